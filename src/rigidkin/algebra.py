@@ -1,0 +1,153 @@
+"""Algebra helpers shared by the laws: readable simplification and zero tests by random evaluation.
+
+sympy's ``simplify`` is thorough but can be very slow on the large expressions that multibody
+kinematics produce.  rigidkin therefore simplifies in a fixed, bounded pipeline (cancel, trigsimp,
+factor_terms) and skips the costly steps above a size limit.  Whether an expression is identically
+zero is decided the way a careful engineer would check: at several random states and parameter
+values (an analytic expression that vanishes at random points is zero with probability one),
+confirmed symbolically when the expression is small.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Iterable, Mapping
+
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+t = dynamicsymbols._t
+
+#: Above this operation count the costly simplification steps are skipped.
+SIMPLIFY_LIMIT = 400
+
+
+def functions_of_time(expr: sp.Basic) -> set[sp.Function]:
+    """The undefined functions of time (coordinates, specified motions) an expression contains."""
+    return {f for f in expr.atoms(sp.Function) if isinstance(f.func, sp.core.function.UndefinedFunction)
+            and f.args == (t,)}
+
+
+def plain_state(expr: sp.Basic, extra_functions: Iterable[sp.Function] = ()) -> tuple[sp.Basic, dict]:
+    """Replace q(t), q̇, q̈ ... by plain symbols; returns (expression, plain symbol → original)."""
+    funcs = functions_of_time(expr) | set(extra_functions)
+    forward: dict = {}
+    back: dict = {}
+    derivs = sorted(expr.atoms(sp.Derivative), key=lambda d: -sum(c for _, c in d.variable_count))
+    for d in derivs:
+        if d.expr in funcs:
+            order = sum(c for _, c in d.variable_count)
+            s = sp.Symbol(f"_{d.expr.func.__name__}_d{order}", real=True)
+            forward[d] = s
+            back[s] = d
+    for f in funcs:
+        s = sp.Symbol(f"_{f.func.__name__}_d0", real=True)
+        forward[f] = s
+        back[s] = f
+    return expr.xreplace(forward) if forward else expr, back
+
+
+def random_point(symbols: Iterable[sp.Symbol], rng: random.Random) -> dict:
+    """Random values: positive symbols in [0.5, 2], others in [-1.5, 1.5] (avoiding tiny magnitudes)."""
+    values = {}
+    for s in symbols:
+        if s.is_positive:
+            values[s] = sp.Float(rng.uniform(0.5, 2.0))
+        else:
+            v = rng.uniform(0.3, 1.5)
+            values[s] = sp.Float(v if rng.random() < 0.5 else -v)
+    return values
+
+
+def numeric_value(expr: sp.Basic, rng: random.Random) -> complex:
+    """Evaluate an expression of the state and parameters at one random point."""
+    plain, _ = plain_state(sp.sympify(expr))
+    free = plain.free_symbols - {t}
+    values = random_point(free, rng)
+    values[t] = sp.Float(rng.uniform(0.1, 1.0))
+    return complex(plain.xreplace(values).evalf(30))
+
+
+def is_zero(expr: sp.Basic, trials: int = 4, seed: int = 1, tol: float = 1e-10) -> bool:
+    """True when ``expr`` vanishes identically (random evaluation, scaled tolerance)."""
+    expr = sp.sympify(expr)
+    if expr == 0:
+        return True
+    if expr.is_number:
+        return abs(complex(expr.evalf())) < tol
+    rng = random.Random(seed)
+    for _ in range(trials):
+        try:
+            v = numeric_value(expr, rng)
+        except (TypeError, ValueError, ZeroDivisionError):
+            return False
+        if not (abs(v) < tol):
+            return False
+    return True
+
+
+def readable(expr: sp.Basic) -> sp.Basic:
+    """Simplify for a person to read: cancel, trigsimp and factor_terms, bounded by size."""
+    expr = sp.sympify(expr)
+    if expr.is_number or expr.is_Symbol:
+        return sp.nsimplify(expr) if expr.is_Float else expr
+    small = sp.count_ops(expr) <= SIMPLIFY_LIMIT
+    try:
+        e = sp.cancel(expr) if small else expr
+        if small:
+            e = sp.trigsimp(e)
+            e2 = sp.factor_terms(sp.expand(e))
+            e2 = sp.factor_terms(sp.trigsimp(e2))
+            if sp.count_ops(e2) < sp.count_ops(e):
+                e = e2
+            e3 = sp.factor_terms(e)
+            if sp.count_ops(e3) <= sp.count_ops(e):
+                e = e3
+        return e
+    except (sp.PolynomialError, NotImplementedError, RecursionError):
+        return expr
+
+
+def strip_factors(expr: sp.Basic, keep: Iterable[sp.Basic] = ()) -> sp.Basic:
+    """Drop nonzero constant and positive-parameter factors of an expression ``= 0``.
+
+    ``3*m*l*(2*θ̈ − g sinθ)/2 = 0`` becomes ``2*θ̈ − g sinθ = 0``.  Factors that contain a
+    coordinate or its rates are kept (they could vanish).
+    """
+    expr = sp.factor_terms(sp.together(expr))
+    num, _den = sp.fraction(expr)
+    expr = num
+    if not expr.is_Mul:
+        return expr
+    kept = []
+    for f in expr.args:
+        base = f.base if f.is_Pow else f
+        if f.is_number or (base.is_Symbol and base.is_positive):
+            continue
+        kept.append(f)
+    return sp.Mul(*kept) if kept else sp.Integer(1)
+
+
+def leading_sign(expr: sp.Basic, unknowns: Iterable[sp.Basic]) -> int:
+    """Sign to multiply an equation ``= 0`` by so that its first unknown has a positive coefficient."""
+    expr = sp.expand(expr)
+    for u in unknowns:
+        c = expr.coeff(u)
+        if c != 0:
+            c_num = sp.Mul(*[a for a in sp.Mul.make_args(c) if a.is_number]) if c.is_Mul else c
+            if c_num.is_number:
+                return -1 if c_num < 0 else 1
+            return 1
+    return 1
+
+
+def substitute(expr, mapping: Mapping):
+    """``xreplace`` that also reaches into sympy vectors and matrices."""
+    from sympy.physics.vector import Vector
+
+    if isinstance(expr, Vector):
+        return Vector([(expr_i.xreplace(mapping), frame) for expr_i, frame in expr.args]) \
+            if expr.args else expr
+    if mapping:
+        return expr.xreplace(mapping)
+    return expr

@@ -1,0 +1,144 @@
+"""Euler's 1st law and Euler's 2nd law about the mass centre, for every body.
+
+For each body: F = m ā (the sum of the forces on the free-body diagram, reactions included) and
+M̄ = d(H̄)/dt with H̄ = Ī·ω (the rate taken in the inertial frame: Ī·α + ω × Ī·ω when Ī is fixed in
+the body).  Each is resolved into scalar equations along the inertial basis (in a planar problem:
+the two in-plane force equations and the moment equation about Ez).  A massless body gives
+ΣF = 0 and ΣM = 0 about its reference point.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+from sympy.physics.vector import Vector, dynamicsymbols
+
+from ..errors import ModelError
+from ..mode import ModeSetup
+
+t = dynamicsymbols._t
+
+
+@dataclass(frozen=True)
+class BalanceEquation:
+    """A scalar balance equation ``lhs = rhs`` (loads on the left, inertia on the right)."""
+
+    label: str
+    body: str
+    law: str
+    lhs: sp.Expr
+    rhs: sp.Expr
+
+    @property
+    def expr(self) -> sp.Expr:
+        """The equation as ``expr = 0``."""
+        return self.lhs - self.rhs
+
+
+@dataclass(frozen=True)
+class BodyBalance:
+    """The vector balance of one body: resultant force, moment about the mass centre, ā, dH̄/dt."""
+
+    body: object
+    force: Vector
+    moment: Vector
+    mass_accel: Vector
+    momentum_rate: Vector
+    omega: Vector
+    v_centre: Vector
+
+
+def body_loads(setup: ModeSetup, body) -> tuple[Vector, Vector, list]:
+    """Resultant force on ``body`` and its moment about the body's mass centre."""
+    kin = setup.kin
+    rG = kin.position(body.centre)
+    F, M, apps = Vector(0), Vector(0), []
+    for app in setup.applications:
+        if app.body is not body:
+            continue
+        apps.append(app)
+        if app.is_torque:
+            M += app.vector
+        else:
+            loc = app.location if app.location is not None else kin.position(app.point)
+            F += app.vector
+            M += (loc - rG).cross(app.vector)
+    return F, M, apps
+
+
+def body_balances(setup: ModeSetup) -> list[BodyBalance]:
+    """F, M̄, m ā and dH̄/dt of every body, in the independent coordinates of the mode."""
+    key = ("balances",)
+    cache = setup.__dict__.setdefault("_law_cache", {})
+    if key in cache:
+        return cache[key]
+    kin, red = setup.kin, setup.reduction
+    out = []
+    for body in setup.system.bodies.values():
+        F, M, _ = body_loads(setup, body)
+        G = body.centre
+        w = kin.omega_of(body)
+        H = body.inertia.dot(w) if not body.is_massless else Vector(0)
+        dH = H.dt(kin.F.ref) if H != Vector(0) else Vector(0)
+        a = kin.acceleration(G) if not body.is_massless else Vector(0)
+        out.append(BodyBalance(body, _ind(setup, F), _ind(setup, M), _ind(setup, body.mass * a),
+                               _ind(setup, dH), _ind(setup, w), _ind(setup, kin.velocity(G))))
+    cache[key] = out
+    return out
+
+
+def _ind(setup: ModeSetup, v):
+    v = setup.reduction.to_independent(v)
+    if setup.substitutions:
+        v = v.xreplace(setup.substitutions) if not isinstance(v, Vector) else \
+            Vector([(m.xreplace(setup.substitutions), f) for m, f in v.args]) if v.args else v
+    return v
+
+
+def equations(setup: ModeSetup) -> list[BalanceEquation]:
+    """The scalar Newton–Euler equations of every body, recorded in the trace as they are formed."""
+    kin, tr = setup.kin, setup.trace
+    F = kin.F
+    force_dirs = [(F.x, F.basis[0]), (F.y, F.basis[1])] + ([] if kin.planar else [(F.z, F.basis[2])])
+    moment_dirs = [(F.z, F.basis[2])] if kin.planar else [(F.x, F.basis[0]), (F.y, F.basis[1]),
+                                                          (F.z, F.basis[2])]
+    out = []
+    for bal in body_balances(setup):
+        b = bal.body
+        _, _, apps = body_loads(setup, b)
+        tr.add("Free-body diagram", f"Loads on {b.name}",
+               [(sp.Symbol(a.label.replace(" ", "_")), _ind(setup, a.vector)) for a in apps],
+               "every force and torque on the body; reactions are unknowns: "
+               + (", ".join(str(a.reaction) for a in apps if a.reaction is not None) or "none") + ".")
+        if not b.is_massless:
+            tr.add("Inertia and momentum", f"Inertia and angular momentum of {b.name}",
+                   [(sp.Symbol(f"I_{b.name}"), b.inertia), (sp.Symbol(f"H_{b.centre.name}"),
+                                                            _ind(setup, b.inertia.dot(kin.omega_of(b))))],
+                   f"{b.shape.kind} ({', '.join(f'{k} = {v}' for k, v in b.shape.dimensions.items())}); "
+                   "H̄ = Ī·ω.")
+        ref = "mass centre" if not b.is_massless else "reference point"
+        for e, name in force_dirs:
+            lhs, rhs = kin.simplify_expr(bal.force.dot(e)), kin.simplify_expr(bal.mass_accel.dot(e))
+            out.append(BalanceEquation(f"Euler's 1st law for {b.name} along {name}", b.name,
+                                       "newton-euler", lhs, rhs))
+        for e, name in moment_dirs:
+            lhs, rhs = kin.simplify_expr(bal.moment.dot(e)), kin.simplify_expr(bal.momentum_rate.dot(e))
+            out.append(BalanceEquation(f"Euler's 2nd law for {b.name} about its {ref}, along {name}", b.name,
+                                       "newton-euler", lhs, rhs))
+    kept = []
+    for eq in out:
+        if eq.expr == 0 or kin.is_zero(eq.expr):
+            continue
+        kept.append(eq)
+    unknowns = {q.diff(t, 2) for q in setup.reduction.independent} | set(setup.reactions)
+    for eq in kept:
+        if not eq.expr.has(*unknowns) and not eq.expr.has(*[sc.symbol for sc in setup.sign_choices]):
+            raise ModelError(
+                f"{eq.label} reads {eq.lhs} = {eq.rhs}, which involves no unknown and does not hold: no "
+                "reaction can carry this load component.", where=eq.body,
+                hint="Add the constraint (and its reaction) that carries it, or check the load's direction.")
+    for eq in kept:
+        tr.add("Balance laws", eq.label, [(eq.lhs, eq.rhs)],
+               "F = m ā" if "1st" in eq.label else "M̄ = dH̄/dt (rate in the inertial frame)")
+    return kept

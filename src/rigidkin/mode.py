@@ -1,0 +1,129 @@
+"""A mode of a system: the state of every contact (open, slipping, sticking) and what follows from it.
+
+``setup_mode`` gathers, for one mode, the constraint rows that are active, the loads (the system's
+own and the sliding friction of slipping contacts), every force and torque application with the
+unknown reactions they carry, the signs on which friction directions depend, and the reduction to
+independent coordinates.  Every balance law starts from the same ``ModeSetup``, so they all see the
+same free-body diagrams.  It records the frames, coordinates and kinematics in the trace.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from .errors import ModelError
+from .kinematics import Kinematics, Reduction, reduce_constraints
+from .model.loads import Application, SignChoice
+from .trace import Trace
+
+
+@dataclass
+class ModeSetup:
+    """Everything the laws need for one mode of one system."""
+
+    system: object
+    kin: Kinematics
+    states: dict
+    rows: list
+    loads: list
+    applications: list[Application]
+    reactions: list[sp.Symbol]
+    sign_choices: list[SignChoice]
+    reduction: Reduction
+    substitutions: dict
+    trace: Trace = field(default_factory=Trace)
+
+    @property
+    def unilateral(self) -> list:
+        """(reaction, row) for each unilateral normal reaction active in this mode."""
+        return [(r.reaction, r) for r in self.rows if r.unilateral]
+
+
+def mode_key(system, mode: dict, independent, substitutions) -> tuple:
+    ind = None if independent is None else tuple(str(q) for q in independent)
+    return (tuple(sorted(mode.items())), ind, tuple(sorted((str(k), str(v)) for k, v in substitutions.items())))
+
+
+def setup_mode(system, mode: dict | None = None, independent=None, substitutions: dict | None = None) -> ModeSetup:
+    """Build (and cache on the system) the ModeSetup for ``mode``."""
+    mode = dict(mode or {})
+    substitutions = dict(substitutions or {})
+    key = ("mode",) + mode_key(system, mode, independent, substitutions)
+    if key in system._cache:
+        return system._cache[key]
+    for name in mode:
+        if name not in system.constraints:
+            raise ModelError(f"the mode names '{name}', which is not a constraint of the system.",
+                             where="mode", hint=f"Constraints: {', '.join(system.constraints) or 'none'}.")
+    kin = system._cache.get("kin") or Kinematics(system)
+    system._cache["kin"] = kin
+    trace = Trace(law="kinematics")
+    _trace_frames(system, kin, trace)
+    states, rows, loads = {}, [], list(system.loads.values())
+    for name, c in system.constraints.items():
+        st = mode.get(name) or c.default_state(kin)
+        if st not in c.states:
+            raise ModelError(f"state '{st}' is not one of {', '.join(c.states)}.", where=f"mode of {name}")
+        states[name] = st
+        rows.extend(c.rows(kin, st))
+        loads.extend(c.loads(kin, st))
+    red = reduce_constraints(system, kin, rows, independent, trace)
+    apps, signs = [], []
+    for ld in loads:
+        apps.extend(ld.applications(kin))
+        signs.extend(ld.sign_choices(kin))
+    for row in rows:
+        apps.extend(row.applications)
+    reactions = [row.reaction for row in rows]
+    # a sign choice on a quantity that vanishes identically in this mode is not a regime
+    kept = []
+    for sc in signs:
+        if sc.rate_based and kin.is_zero(red.reduce(sc.quantity)):
+            raise ModelError(f"the slip speed of sliding friction '{sc.load}' is zero for every motion the "
+                             "coordinates allow, so its direction is undefined.", where=f"friction {sc.load}",
+                             hint="Make the contact rolling (stick), or add a coordinate that lets it slip.")
+        kept.append(sc)
+    setup = ModeSetup(system, kin, states, rows, loads, apps, reactions, kept, red, substitutions, trace)
+    _trace_kinematics(setup)
+    system._cache[key] = setup
+    return setup
+
+
+def _trace_frames(system, kin, trace: Trace) -> None:
+    F = system.inertial
+    trace.add("Frames and coordinates", "Inertial frame",
+              [], f"F is the ground; its basis {', '.join(F.basis)} is fixed "
+                  f"({F.basis[2]} = {F.basis[0]} × {F.basis[1]}).")
+    for c in system.coordinate_info.values():
+        trace.add("Frames and coordinates", f"Coordinate {c.name}", [],
+                  f"{c.name} ({c.kind}): {c.sense or c.description or 'no sense given'}")
+    for fr in system.frames.values():
+        if fr.parent is None:
+            continue
+        eqs = [(v, v.express(fr.parent.ref)) for v in (fr.x, fr.y, fr.z)]
+        if fr.sequence:
+            why = f"{fr.name} is rotated from {fr.parent.name} by the body-fixed sequence {fr.sequence}."
+        else:
+            why = f"{fr.name} is rotated from {fr.parent.name} by {fr.angle} about {fr.axis}."
+        if fr.description:
+            why += " " + fr.description
+        trace.add("Frames and coordinates", f"Frame {fr.name} and its basis", eqs, why)
+
+
+def _trace_kinematics(setup: ModeSetup) -> None:
+    system, kin, red, tr = setup.system, setup.kin, setup.reduction, setup.trace
+    for b in system.bodies.values():
+        w = red.to_independent(kin.omega_of(b))
+        tr.add("Kinematics", f"Angular velocity of {b.name}", [(sp.Symbol(f"ω_{b.name}"), w)],
+               f"{b.frame.name} turns with {b.name}; the angular velocity adds up along the chain of frames.")
+    for b in system.bodies.values():
+        G = b.centre
+        r = kin.position(G)
+        tr.add("Kinematics", f"Mass centre {G.name} of {b.name}",
+               [(sp.Symbol(f"r_{G.name}"), r), (sp.Symbol(f"v_{G.name}"), red.to_independent(kin.velocity(G))),
+                (sp.Symbol(f"a_{G.name}"), red.to_independent(kin.acceleration(G)))],
+               "velocity and acceleration by the transport theorem, F d/dt r = B d/dt r + ω × r.")
+    for note in kin.assumptions:
+        tr.add("Kinematics", "Assumption", [], note)

@@ -1,0 +1,40 @@
+"""Rigid bodies: mass, mass centre, body frame and the inertia dyadic about the mass centre."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+from sympy.physics.vector import Dyadic
+
+from .frames import Frame
+from .points import Point
+from .shapes import Shape
+
+
+@dataclass(eq=False)
+class Body:
+    """A rigid body; ``centre`` is its mass centre, ``reference`` the point where its shape was placed."""
+
+    name: str
+    shape: Shape
+    frame: Frame
+    reference: Point
+    centre: Point
+    description: str = ""
+
+    @property
+    def mass(self) -> sp.Expr:
+        return sp.sympify(self.shape.mass)
+
+    @property
+    def inertia(self) -> Dyadic:
+        """Inertia dyadic about the mass centre, in the body frame."""
+        return self.shape.central_inertia(self.frame)
+
+    @property
+    def is_massless(self) -> bool:
+        return self.mass == 0
+
+    def __repr__(self) -> str:
+        return f"Body({self.name}: {self.shape.kind})"

@@ -1,0 +1,108 @@
+"""Printing for people: unicode text (θ̈, θ̇, µ) for a terminal and LaTeX for documents and Jupyter.
+
+Coordinates print by name without ``(t)``, their rates with dots above (one dot per derivative up
+to two, then a superscript order), Greek names as Greek letters.
+"""
+
+from __future__ import annotations
+
+import re
+
+import sympy as sp
+from sympy.physics.vector import Vector, dynamicsymbols, vlatex
+from sympy.printing.str import StrPrinter
+
+t = dynamicsymbols._t
+
+GREEK = {
+    "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ", "eta": "η",
+    "theta": "θ", "iota": "ι", "kappa": "κ", "lambda": "λ", "lamda": "λ", "mu": "µ", "nu": "ν", "xi": "ξ",
+    "omicron": "ο", "pi": "π", "rho": "ρ", "sigma": "σ", "tau": "τ", "upsilon": "υ", "phi": "φ", "chi": "χ",
+    "psi": "ψ", "omega": "ω", "Gamma": "Γ", "Delta": "Δ", "Theta": "Θ", "Lambda": "Λ", "Xi": "Ξ", "Pi": "Π",
+    "Sigma": "Σ", "Phi": "Φ", "Psi": "Ψ", "Omega": "Ω",
+}
+_SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+_DOTS = {1: "\u0307", 2: "\u0308"}
+
+
+def greek(name: str) -> str:
+    """``theta_1`` → ``θ_1``; ``F_hat`` → ``F̂``."""
+    head, sep, tail = name.partition("_")
+    if tail == "hat":
+        return greek(head) + "\u0302"
+    return GREEK.get(head, head) + sep + tail
+
+
+class TextPrinter(StrPrinter):
+    """sympy's str printer with dynamics notation."""
+
+    def _print_Symbol(self, expr):
+        return greek(expr.name)
+
+    _print_Dummy = _print_Symbol
+
+    def _print_Function(self, expr):
+        if isinstance(expr.func, sp.core.function.UndefinedFunction) and expr.args == (t,):
+            return greek(expr.func.__name__)
+        return super()._print_Function(expr)
+
+    def _print_Derivative(self, expr):
+        f = expr.expr
+        if isinstance(f, sp.Function) and isinstance(f.func, sp.core.function.UndefinedFunction) \
+                and f.args == (t,) and all(v == t for v, _ in expr.variable_count):
+            order = sum(c for _, c in expr.variable_count)
+            name = greek(f.func.__name__)
+            if order in _DOTS and len(name) >= 1:
+                return name[0] + _DOTS[order] + name[1:]
+            return f"{name}⁽{str(order).translate(_SUP)}⁾"
+        return super()._print_Derivative(expr)
+
+
+_PRINTER = TextPrinter({"order": "none"})
+
+
+def text(expr) -> str:
+    """Unicode text of an expression, a vector, or an equation (lhs, rhs)."""
+    if isinstance(expr, tuple) and len(expr) == 2:
+        return f"{text(expr[0])} = {text(expr[1])}"
+    if isinstance(expr, Vector):
+        return text_vector(expr)
+    if isinstance(expr, sp.Eq):
+        return f"{text(expr.lhs)} = {text(expr.rhs)}"
+    if isinstance(expr, sp.MatrixBase):
+        return "[" + ", ".join(text(e) for e in expr) + "]"
+    s = _PRINTER.doprint(sp.sympify(expr))
+    s = re.sub(r"\*\*(-?\d+)", lambda m: m.group(1).translate(_SUP), s)
+    s = s.replace("**", "^").replace("*", "·")
+    return s
+
+
+def text_vector(v: Vector) -> str:
+    """A vector as a sum of components times named basis vectors (in the frames it is written in)."""
+    if v == Vector(0):
+        return "0"
+    terms = []
+    for measure, frame in v.args:
+        for comp, name in zip(measure, frame.str_vecs):
+            comp = sp.sympify(comp)
+            if comp == 0:
+                continue
+            c = text(comp)
+            if comp == 1:
+                terms.append(name)
+            elif comp == -1:
+                terms.append("-" + name)
+            elif comp.is_Add:
+                terms.append(f"({c}) {name}")
+            else:
+                terms.append(f"{c} {name}")
+    return " + ".join(terms).replace("+ -", "- ") if terms else "0"
+
+
+def latex(expr) -> str:
+    """LaTeX (with θ̇ as \\dot{\\theta}) of an expression, vector, or equation (lhs, rhs)."""
+    if isinstance(expr, tuple) and len(expr) == 2:
+        return f"{latex(expr[0])} = {latex(expr[1])}"
+    if isinstance(expr, sp.Eq):
+        return f"{latex(expr.lhs)} = {latex(expr.rhs)}"
+    return vlatex(expr)

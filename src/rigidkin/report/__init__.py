@@ -1,0 +1,1 @@
+"""Presenting results: text for a terminal (and, later, Markdown, LaTeX, HTML, figures)."""

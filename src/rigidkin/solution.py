@@ -1,0 +1,328 @@
+"""Solving the balance equations: accelerations and reactions jointly, regime by regime.
+
+The scalar equations are linear in the unknown accelerations q̈ and reactions.  Before solving,
+their numeric rank at random states tells whether the model is determinate; if not, the error
+names the unknowns that cannot be found or the equations that cannot hold.  The unknowns are then
+solved jointly (Gaussian elimination with numeric pivoting, simplified for reading).
+
+The equations of motion free of reactions are formed by combining each body's balance with the
+weights that make workless reactions cancel (the partial velocities of the mass centre and the
+partial angular velocities with respect to each independent rate); the reactions that do work (a
+normal force that sets a sliding-friction magnitude) are replaced by their solved values.  These
+rows give the mass matrix and forcing; their accelerations must equal the joint solution's, which
+is checked every time.
+
+Where a load depends on a sign (the direction of sliding friction; the sign of a bilateral normal
+force under friction) the solution is split into regimes, each with its condition, never a
+``sign()`` hidden in an expression.
+"""
+
+from __future__ import annotations
+
+import itertools
+import random
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import numpy as np
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from . import algebra
+from .errors import ConstraintError, RegimeError, RigidkinError
+from .kinematics import linear_form, solve_square
+from .mode import ModeSetup
+from .printing import latex, text
+from .trace import Trace
+
+t = dynamicsymbols._t
+
+
+@dataclass(frozen=True)
+class Condition:
+    """``expr`` ``relation`` 0, e.g. a slip speed > 0 or a normal reaction ≥ 0, with a description."""
+
+    expr: sp.Expr
+    relation: str
+    label: str
+    kind: str = "regime"    # "regime" (defines the regime) or "validity" (the solution holds while)
+
+    def holds(self, value: float, tol: float = 0.0) -> bool:
+        return {">": value > tol, ">=": value >= -tol, "<": value < -tol, "<=": value <= tol}[self.relation]
+
+    def __str__(self) -> str:
+        return f"{text(self.expr)} {self.relation.replace('>=', '≥').replace('<=', '≤')} 0   ({self.label})"
+
+
+@dataclass(frozen=True)
+class Regime:
+    """The equations of motion and reactions under one set of sign conditions."""
+
+    conditions: tuple[Condition, ...]
+    validity: tuple[Condition, ...]
+    signs: Mapping
+    eom: tuple
+    accelerations: Mapping
+    reactions: Mapping
+    mass_matrix: sp.Matrix
+    forcing: sp.Matrix
+
+    def describe(self) -> str:
+        return " and ".join(str(c) for c in self.conditions) or "always"
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The result of a law: equations of motion in normal and mass-matrix form, reactions, regimes.
+
+    ``eom`` (each ``= 0``), ``accelerations`` (coordinate → q̈), ``reactions`` (name → expression
+    of the state), ``mass_matrix`` and ``forcing`` refer to the single regime; with several regimes
+    pick one with :meth:`regime` (they raise :class:`RegimeError` otherwise).
+    """
+
+    system: object
+    method: str
+    states: Mapping
+    coordinates: tuple
+    dependent: tuple
+    relations: Mapping              # q_d → f(q_i) (integrated constraint relations)
+    rate_relations: Mapping         # q̇_d → expression
+    regimes: tuple[Regime, ...]
+    equations: tuple                # the balance equations the law formed (BalanceEquation)
+    trace: Trace = field(compare=False)
+    setup: ModeSetup = field(compare=False, repr=False)
+
+    # single-regime access -------------------------------------------------------------------
+    def _one(self) -> Regime:
+        if len(self.regimes) == 1:
+            return self.regimes[0]
+        raise RegimeError(
+            f"this solution has {len(self.regimes)} regimes: "
+            + "; ".join(f"[{i}] {r.describe()}" for i, r in enumerate(self.regimes)) + ".",
+            hint="Pick one with solution.regime(i) or solution.regime_at(state).")
+
+    @property
+    def eom(self) -> tuple:
+        return self._one().eom
+
+    @property
+    def accelerations(self) -> Mapping:
+        return self._one().accelerations
+
+    @property
+    def reactions(self) -> Mapping:
+        return self._one().reactions
+
+    @property
+    def mass_matrix(self) -> sp.Matrix:
+        return self._one().mass_matrix
+
+    @property
+    def forcing(self) -> sp.Matrix:
+        return self._one().forcing
+
+    @property
+    def validity(self) -> tuple:
+        return self._one().validity
+
+    def regime(self, index: int = 0) -> Regime:
+        return self.regimes[index]
+
+    def regime_at(self, values: Mapping) -> Regime:
+        """The regime whose conditions hold at numeric ``values`` (symbols and q, q̇ → numbers)."""
+        for r in self.regimes:
+            if all(c.holds(float(_evaluate(c.expr, values))) for c in r.conditions):
+                return r
+        raise RegimeError("no regime's conditions hold at the given state (a sign is zero there?).")
+
+    # presentation ------------------------------------------------------------------------------
+    def __str__(self) -> str:
+        from .report.text import solution_text
+
+        return solution_text(self)
+
+    def _repr_latex_(self) -> str:
+        lines = []
+        rel = {">": ">", "<": "<", ">=": r"\geq", "<=": r"\leq"}
+        for i, r in enumerate(self.regimes):
+            if len(self.regimes) > 1:
+                conds = r" \text{ and } ".join(f"{latex(c.expr)} {rel[c.relation]} 0" for c in r.conditions)
+                lines.append(rf"\text{{Regime {i}: }} {conds}\\")
+            lines += [f"{latex(e)} = 0" + r"\\" for e in r.eom]
+        return "$\\displaystyle \\begin{gathered}" + "\n".join(lines) + "\\end{gathered}$"
+
+
+def _evaluate(expr, values: Mapping) -> float:
+    plain, back = algebra.plain_state(sp.sympify(expr))
+    fwd = {s: values[orig] for s, orig in back.items() if orig in values}
+    rest = {k: v for k, v in values.items() if not isinstance(k, (sp.Derivative, sp.Function))}
+    return complex(plain.xreplace({**fwd, **rest}).evalf()).real
+
+
+# --------------------------------------------------------------------------------------------------
+def solve_balance(setup: ModeSetup, equations, balances, method: str, trace: Trace) -> Solution:
+    """Solve balance equations (linear in q̈_i and reactions) for every regime of the mode."""
+    red = setup.reduction
+    accels = [q.diff(t, 2) for q in red.independent]
+    present = set().union(*[e.expr.free_symbols for e in equations]) if equations else set()
+    reactions = [r for r in setup.reactions if r in present]
+    missing = [r for r in setup.reactions if r not in present]
+    unknowns = accels + reactions
+    trace.add("Solving", "Unknowns", [],
+              f"{len(equations)} scalar equations for {len(unknowns)} unknowns: "
+              + ", ".join(text(u) for u in unknowns) + "."
+              + (f" The reactions {', '.join(map(str, missing))} appear in no equation (they are zero)."
+                 if missing else ""))
+    used = set().union(*[e.expr.free_symbols for e in equations]) if equations else set()
+    choices = [c for c in setup.sign_choices if c.symbol in used]
+    regimes = []
+    for signs in itertools.product((1, -1), repeat=len(choices)):
+        sign_map = {c.symbol: s for c, s in zip(choices, signs)}
+        regimes.append(_solve_regime(setup, choices, equations, balances, unknowns, reactions, missing,
+                                     sign_map, trace))
+    return Solution(setup.system, method, MappingProxyType(dict(setup.states)), tuple(red.independent),
+                    tuple(red.dependent), MappingProxyType(dict(red.coord_map)),
+                    MappingProxyType({k: red.to_independent(v) for k, v in red.rate_map.items()}),
+                    tuple(regimes), tuple(equations), trace, setup)
+
+
+def _numeric(M: sp.Matrix, seed: int) -> np.ndarray:
+    plain, _ = algebra.plain_state(M)
+    rng = random.Random(seed)
+    vals = algebra.random_point(plain.free_symbols - {t}, rng)
+    vals[t] = sp.Float(0.41)
+    return np.array(plain.xreplace(vals).evalf(), dtype=complex)
+
+
+def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels) -> list[int]:
+    """Check the linear system; return the indices of a square, nonsingular set of rows."""
+    Ab = _numeric(A.row_join(b), 5)
+    nA, nb = Ab[:, :-1], Ab[:, -1:]
+    scale = max(1.0, float(np.abs(nA).max()))
+    rank = np.linalg.matrix_rank(nA, tol=1e-9 * scale)
+    n = len(unknowns)
+    if rank < n:
+        _, _, vh = np.linalg.svd(nA)
+        null = vh[rank:].conj().T
+        loose = [str(unknowns[i]) for i in range(n) if np.abs(null[i]).max() > 1e-8]
+        raise ConstraintError(
+            f"the balance laws give {len(labels)} equations of rank {rank} for {n} unknowns; "
+            f"{', '.join(loose)} cannot be determined from them.",
+            hint="The model is under-determined: a reaction is redundant (statically indeterminate "
+                 "supports) or a body lacks a constraint or a coordinate. "
+                 f"Coordinates and constraints leave {n - (n - rank)} determinable unknowns.")
+    keep = []
+    for i in range(len(labels)):
+        trial = keep + [i]
+        if np.linalg.matrix_rank(nA[trial], tol=1e-9 * scale) == len(trial):
+            keep = trial
+        if len(keep) == n:
+            break
+    # consistency of the rows left out
+    x = np.linalg.solve(nA[keep], nb[keep])
+    bad = [labels[i] for i in range(len(labels)) if i not in keep
+           and abs((nA[i] @ x - nb[i])[0]) > 1e-8 * max(1.0, float(np.abs(nb).max()))]
+    if bad:
+        raise ConstraintError(
+            "the balance laws cannot all hold: " + "; ".join(bad) + " contradict the others.",
+            hint="The model is over-constrained or a load has no reaction to carry it.")
+    return keep
+
+
+def _solve_regime(setup, choices, equations, balances, unknowns, reactions, missing, sign_map, trace) -> Regime:
+    kin, red = setup.kin, setup.reduction
+    exprs = [e.expr.xreplace(sign_map) for e in equations]
+    A, b = linear_form(exprs, unknowns)
+    keep = _determinacy(A, b, unknowns, [e.label for e in equations])
+    x = solve_square(A.extract(keep, list(range(len(unknowns)))), -b.extract(keep, [0]),
+                     simplify=kin.simplify_expr)
+    solved = dict(zip(unknowns, x))
+    accels = {q: solved[q.diff(t, 2)] for q in red.independent}
+    react = {str(r): solved[r] for r in reactions}
+    for r in missing:
+        react[str(r)] = sp.Integer(0)
+    # equations of motion free of reactions
+    eom, M, f = _reaction_free_rows(setup, balances, reactions, solved, sign_map)
+    _check_consistency(M, f, accels, red.independent)
+    conditions, validity = _conditions(setup, choices, sign_map, react)
+    if sign_map:
+        trace.add("Solving", "Regime", [], " and ".join(str(c) for c in conditions))
+    trace.add("Solving", "Accelerations and reactions, solved jointly",
+              [(q.diff(t, 2), a) for q, a in accels.items()] + [(sp.Symbol(k), v) for k, v in react.items()],
+              "all unknowns from the scalar equations at once.")
+    trace.add("Solving", "Equations of motion (reactions eliminated)", [(e, 0) for e in eom],
+              "each body's balance weighted by the partial velocity of its mass centre and its partial "
+              "angular velocity for each independent rate: workless reactions cancel.")
+    return Regime(tuple(conditions), tuple(validity), MappingProxyType(dict(sign_map)), tuple(eom),
+                  MappingProxyType(accels), MappingProxyType(react), M, f)
+
+
+def _reaction_free_rows(setup, balances, reactions, solved, sign_map):
+    kin, red = setup.kin, setup.reduction
+    Fr = kin.F.ref
+    accels = [q.diff(t, 2) for q in red.independent]
+    rows = []
+    for q in red.independent:
+        u = q.diff(t)
+        row = sp.Integer(0)
+        for bal in balances:
+            pv = bal.v_centre.diff(u, Fr)
+            pw = bal.omega.diff(u, Fr)
+            row += (bal.force - bal.mass_accel).dot(pv) + (bal.moment - bal.momentum_rate).dot(pw)
+        row = -row.xreplace(sign_map)
+        zero = {}
+        for r in reactions:
+            c = sp.diff(row, r)
+            zero[r] = sp.Integer(0) if algebra.is_zero(c) else solved[r]
+        rows.append(row.xreplace(zero))
+    A, b = linear_form(rows, accels)
+    M = A.applyfunc(kin.simplify_expr)
+    f = (-b).applyfunc(kin.simplify_expr)
+    eom = []
+    for i in range(len(rows)):
+        e = sum((M[i, j] * accels[j] for j in range(len(accels))), sp.Integer(0)) - f[i]
+        e = algebra.strip_factors(e)
+        e = sp.collect(sp.expand(e), accels, func=sp.factor_terms) if sp.count_ops(e) < 200 else e
+        e = algebra.leading_sign(e, accels) * e
+        eom.append(e)
+    return eom, M, f
+
+
+def _check_consistency(M, f, accels, coords) -> None:
+    """The joint solution and the reaction-free rows must give the same accelerations."""
+    if not coords:
+        return
+    a = sp.Matrix([accels[q] for q in coords])
+    resid = M * a - f
+    for e in resid:
+        if not algebra.is_zero(e, tol=1e-8):
+            raise RigidkinError("internal check failed: the accelerations from the joint solution do not "
+                                "satisfy the reaction-free equations of motion.",
+                                hint="This is a bug in rigidkin; please report the model.")
+
+
+def _conditions(setup, choices, sign_map, react):
+    red = setup.reduction
+    conds, valid = [], []
+    for sc in choices:
+        s = sign_map[sc.symbol]
+        q = red.to_independent(sc.quantity) if sc.rate_based else react.get(str(sc.quantity), sc.quantity)
+        q = setup.kin.simplify_expr(q)
+        rates = [c.diff(t) for c in red.independent]
+        if algebra.leading_sign(q, rates) < 0:   # read "ẋ > 0" rather than "−ẋ < 0"
+            q, s = -q, -s
+        conds.append(Condition(q, ">" if s > 0 else "<", sc.label))
+    for sym, row in setup.unilateral:
+        if str(sym) in react:
+            valid.append(Condition(react[str(sym)], ">=", f"{row.constraint} pushes (unilateral contact)",
+                                   "validity"))
+    for c in setup.system.constraints.values():
+        fr = getattr(c, "friction", None)
+        if setup.states.get(c.name) == "stick" and hasattr(fr, "mu") and str(c.F) in react:
+            N, F = react[str(c.N)], react[str(c.F)]
+            valid.append(Condition(setup.kin.simplify_expr(fr.mu * N - F), ">=",
+                                   f"friction at {c.name} within µN (no slip)", "validity"))
+            valid.append(Condition(setup.kin.simplify_expr(fr.mu * N + F), ">=",
+                                   f"friction at {c.name} within µN (no slip)", "validity"))
+    return conds, valid
