@@ -103,27 +103,33 @@ def readable(expr: sp.Basic) -> sp.Basic:
             e3 = sp.factor_terms(e)
             if sp.count_ops(e3) <= sp.count_ops(e):
                 e = e3
+            if not e.has(sp.Derivative) or sp.count_ops(e) < 60:
+                e4 = sp.factor(e)
+                if sp.count_ops(e4) < sp.count_ops(e):
+                    e = e4
         return e
     except (sp.PolynomialError, NotImplementedError, RecursionError):
         return expr
 
 
 def strip_factors(expr: sp.Basic, keep: Iterable[sp.Basic] = ()) -> sp.Basic:
-    """Drop nonzero constant and positive-parameter factors of an expression ``= 0``.
+    """Drop the constant factors (numbers, parameter combinations) of an expression ``= 0``.
 
     ``3*m*l*(2*θ̈ − g sinθ)/2 = 0`` becomes ``2*θ̈ − g sinθ = 0``.  Factors that contain a
-    coordinate or its rates are kept (they could vanish).
+    coordinate or its rates are kept (they could vanish).  A parameter combination such as
+    (R − r) is taken to be nonzero, as it is in any problem that does not degenerate.
     """
     expr = sp.factor_terms(sp.together(expr))
+    if not expr.is_Mul:
+        expr = sp.factor(expr) if sp.count_ops(expr) < 80 else expr
     num, _den = sp.fraction(expr)
     expr = num
     if not expr.is_Mul:
         return expr
     kept = []
     for f in expr.args:
-        base = f.base if f.is_Pow else f
-        if f.is_number or (base.is_Symbol and base.is_positive):
-            continue
+        if f.is_number or not functions_of_time(f) and not f.has(t):
+            continue   # a nonzero constant or parameter combination
         kept.append(f)
     return sp.Mul(*kept) if kept else sp.Integer(1)
 

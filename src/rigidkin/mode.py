@@ -35,6 +35,15 @@ class ModeSetup:
     substitutions: dict
     trace: Trace = field(default_factory=Trace)
 
+    def vector(self, v):
+        """A vector with the dependent rates and accelerations eliminated (q_d kept: frames may turn with them)."""
+        return self.reduction.reduce(v)
+
+    def scalar(self, e):
+        """A scalar in the independent coordinates: rates eliminated, integrated q_d and substitutions applied."""
+        e = self.reduction.to_independent(sp.sympify(e))
+        return e.xreplace(self.substitutions) if self.substitutions else e
+
     @property
     def unilateral(self) -> list:
         """(reaction, row) for each unilateral normal reaction active in this mode."""
@@ -80,7 +89,7 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
     # a sign choice on a quantity that vanishes identically in this mode is not a regime
     kept = []
     for sc in signs:
-        if sc.rate_based and kin.is_zero(red.reduce(sc.quantity)):
+        if sc.rate_based and kin.is_zero(red.to_independent(sc.quantity)):
             raise ModelError(f"the slip speed of sliding friction '{sc.load}' is zero for every motion the "
                              "coordinates allow, so its direction is undefined.", where=f"friction {sc.load}",
                              hint="Make the contact rolling (stick), or add a coordinate that lets it slip.")
@@ -115,15 +124,15 @@ def _trace_frames(system, kin, trace: Trace) -> None:
 def _trace_kinematics(setup: ModeSetup) -> None:
     system, kin, red, tr = setup.system, setup.kin, setup.reduction, setup.trace
     for b in system.bodies.values():
-        w = red.to_independent(kin.omega_of(b))
+        w = red.reduce(kin.omega_of(b))
         tr.add("Kinematics", f"Angular velocity of {b.name}", [(sp.Symbol(f"ω_{b.name}"), w)],
                f"{b.frame.name} turns with {b.name}; the angular velocity adds up along the chain of frames.")
     for b in system.bodies.values():
         G = b.centre
         r = kin.position(G)
         tr.add("Kinematics", f"Mass centre {G.name} of {b.name}",
-               [(sp.Symbol(f"r_{G.name}"), r), (sp.Symbol(f"v_{G.name}"), red.to_independent(kin.velocity(G))),
-                (sp.Symbol(f"a_{G.name}"), red.to_independent(kin.acceleration(G)))],
+               [(sp.Symbol(f"r_{G.name}"), r), (sp.Symbol(f"v_{G.name}"), red.reduce(kin.velocity(G))),
+                (sp.Symbol(f"a_{G.name}"), red.reduce(kin.acceleration(G)))],
                "velocity and acceleration by the transport theorem, F d/dt r = B d/dt r + ω × r.")
     for note in kin.assumptions:
         tr.add("Kinematics", "Assumption", [], note)

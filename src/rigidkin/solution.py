@@ -157,7 +157,8 @@ def _evaluate(expr, values: Mapping) -> float:
     plain, back = algebra.plain_state(sp.sympify(expr))
     fwd = {s: values[orig] for s, orig in back.items() if orig in values}
     rest = {k: v for k, v in values.items() if not isinstance(k, (sp.Derivative, sp.Function))}
-    return complex(plain.xreplace({**fwd, **rest}).evalf()).real
+    val = plain.xreplace({k: sp.Float(v) for k, v in {**fwd, **rest}.items()})
+    return complex(sp.sympify(val).evalf()).real
 
 
 # --------------------------------------------------------------------------------------------------
@@ -183,7 +184,7 @@ def solve_balance(setup: ModeSetup, equations, balances, method: str, trace: Tra
                                      sign_map, trace))
     return Solution(setup.system, method, MappingProxyType(dict(setup.states)), tuple(red.independent),
                     tuple(red.dependent), MappingProxyType(dict(red.coord_map)),
-                    MappingProxyType({k: red.to_independent(v) for k, v in red.rate_map.items()}),
+                    MappingProxyType({k: setup.scalar(v) for k, v in red.rate_map.items()}),
                     tuple(regimes), tuple(equations), trace, setup)
 
 
@@ -267,10 +268,10 @@ def _reaction_free_rows(setup, balances, reactions, solved, sign_map):
         u = q.diff(t)
         row = sp.Integer(0)
         for bal in balances:
-            pv = bal.v_centre.diff(u, Fr)
-            pw = bal.omega.diff(u, Fr)
+            pv = bal.v_centre.diff(u, Fr, var_in_dcm=False)
+            pw = bal.omega.diff(u, Fr, var_in_dcm=False)
             row += (bal.force - bal.mass_accel).dot(pv) + (bal.moment - bal.momentum_rate).dot(pw)
-        row = -row.xreplace(sign_map)
+        row = -setup.scalar(row).xreplace(sign_map)
         zero = {}
         for r in reactions:
             c = sp.diff(row, r)
@@ -307,7 +308,7 @@ def _conditions(setup, choices, sign_map, react):
     conds, valid = [], []
     for sc in choices:
         s = sign_map[sc.symbol]
-        q = red.to_independent(sc.quantity) if sc.rate_based else react.get(str(sc.quantity), sc.quantity)
+        q = setup.scalar(sc.quantity) if sc.rate_based else react.get(str(sc.quantity), sc.quantity)
         q = setup.kin.simplify_expr(q)
         rates = [c.diff(t) for c in red.independent]
         if algebra.leading_sign(q, rates) < 0:   # read "ẋ > 0" rather than "−ẋ < 0"

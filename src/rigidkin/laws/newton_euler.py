@@ -89,11 +89,7 @@ def body_balances(setup: ModeSetup) -> list[BodyBalance]:
 
 
 def _ind(setup: ModeSetup, v):
-    v = setup.reduction.to_independent(v)
-    if setup.substitutions:
-        v = v.xreplace(setup.substitutions) if not isinstance(v, Vector) else \
-            Vector([(m.xreplace(setup.substitutions), f) for m, f in v.args]) if v.args else v
-    return v
+    return setup.vector(v)
 
 
 def equations(setup: ModeSetup) -> list[BalanceEquation]:
@@ -119,11 +115,13 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
                    "H̄ = Ī·ω.")
         ref = "mass centre" if not b.is_massless else "reference point"
         for e, name in force_dirs:
-            lhs, rhs = kin.simplify_expr(bal.force.dot(e)), kin.simplify_expr(bal.mass_accel.dot(e))
+            lhs = kin.simplify_expr(setup.scalar(bal.force.dot(e)))
+            rhs = kin.simplify_expr(setup.scalar(bal.mass_accel.dot(e)))
             out.append(BalanceEquation(f"Euler's 1st law for {b.name} along {name}", b.name,
                                        "newton-euler", lhs, rhs))
         for e, name in moment_dirs:
-            lhs, rhs = kin.simplify_expr(bal.moment.dot(e)), kin.simplify_expr(bal.momentum_rate.dot(e))
+            lhs = kin.simplify_expr(setup.scalar(bal.moment.dot(e)))
+            rhs = kin.simplify_expr(setup.scalar(bal.momentum_rate.dot(e)))
             out.append(BalanceEquation(f"Euler's 2nd law for {b.name} about its {ref}, along {name}", b.name,
                                        "newton-euler", lhs, rhs))
     kept = []

@@ -11,6 +11,7 @@ rolling without slip).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import sympy as sp
 from sympy.physics.vector import Vector
@@ -52,7 +53,7 @@ class Constraint:
     description: str = field(default="", kw_only=True)
 
     kind = "constraint"
-    states: tuple[str, ...] = ("closed",)
+    states: ClassVar[tuple[str, ...]] = ("closed",)
 
     def default_state(self, kin) -> str:
         return self.states[0]

@@ -1,0 +1,75 @@
+"""Test helpers: numeric comparison of expressions at random states and parameter values."""
+
+from __future__ import annotations
+
+import random
+
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+t = dynamicsymbols._t
+
+
+def plain(expr, coords):
+    """Replace q(t), q̇, q̈ of ``coords`` by plain symbols q, qd, qdd."""
+    m = {}
+    for q in coords:
+        n = q.func.__name__
+        m[q.diff(t, 2)] = sp.Symbol(f"{n}_dd")
+        m[q.diff(t)] = sp.Symbol(f"{n}_d")
+    e = sp.sympify(expr).xreplace(m)
+    return e.xreplace({q: sp.Symbol(n.func.__name__) for n, q in zip(coords, coords)})
+
+
+def sample(symbols, n=20, seed=0, ranges=None):
+    """n dicts of random values: ``ranges`` maps a symbol name to (lo, hi); default (0.5, 2)."""
+    rng = random.Random(seed)
+    ranges = ranges or {}
+    out = []
+    for _ in range(n):
+        out.append({s: rng.uniform(*ranges.get(str(s), (0.5, 2.0))) for s in symbols})
+    return out
+
+
+def values_match(a, b, coords, n=20, seed=0, ranges=None, tol=1e-9, factor=False):
+    """True when expressions a and b (of the state and parameters) agree at n random points.
+
+    With ``factor=True`` they need only agree up to a nonzero factor that may depend on the
+    parameters but not on the state (two forms of one equation ``= 0``).
+    """
+    a, b = plain(a, coords), plain(b, coords)
+    syms = sorted((a.free_symbols | b.free_symbols) - {t}, key=str)
+    state_names = {f"{q.func.__name__}{suf}" for q in coords for suf in ("", "_d", "_dd")}
+    fa, fb = sp.lambdify(syms, a, "mpmath"), sp.lambdify(syms, b, "mpmath")
+    points = sample(syms, n, seed, ranges)
+    groups = [points[i:i + 4] for i in range(0, n, 4)] if factor else [[p] for p in points]
+    for group in groups:
+        ratio = None
+        params = group[0]
+        for vals in group:
+            vals = {s: (vals[s] if str(s) in state_names else params[s]) for s in syms}
+            args = [vals[s] for s in syms]
+            va, vb = complex(fa(*args)), complex(fb(*args))
+            if not factor:
+                if abs(va - vb) > tol * max(1.0, abs(va), abs(vb)):
+                    return False
+                continue
+            if abs(vb) < 1e-12:
+                if abs(va) > 1e-9:
+                    return False
+                continue
+            r = va / vb
+            if abs(r) < 1e-12:
+                return False
+            if ratio is None:
+                ratio = r
+            elif abs(r - ratio) > tol * max(1, abs(ratio)):
+                return False
+    return True
+
+
+def solve_accels(eqs, coords):
+    """Accelerations from a list of equations (= 0) linear in q̈."""
+    acc = [q.diff(t, 2) for q in coords]
+    sol = sp.solve(eqs, acc, dict=True)[0]
+    return {q: sol[q.diff(t, 2)] for q in coords}
