@@ -196,7 +196,7 @@ def _numeric(M: sp.Matrix, seed: int) -> np.ndarray:
     return np.array(plain.xreplace(vals).evalf(), dtype=complex)
 
 
-def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels) -> list[int]:
+def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "") -> list[int]:
     """Check the linear system; return the indices of a square, nonsingular set of rows."""
     Ab = _numeric(A.row_join(b), 5)
     nA, nb = Ab[:, :-1], Ab[:, -1:]
@@ -211,8 +211,7 @@ def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels) -> list[int]:
             f"the balance laws give {len(labels)} equations of rank {rank} for {n} unknowns; "
             f"{', '.join(loose)} cannot be determined from them.",
             hint="The model is under-determined: a reaction is redundant (statically indeterminate "
-                 "supports) or a body lacks a constraint or a coordinate. "
-                 f"Coordinates and constraints leave {n - (n - rank)} determinable unknowns.")
+                 f"supports) or a body lacks a constraint or a coordinate. {dof_note}")
     keep = []
     for i in range(len(labels)):
         trial = keep + [i]
@@ -226,8 +225,11 @@ def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels) -> list[int]:
            and abs((nA[i] @ x - nb[i])[0]) > 1e-8 * max(1.0, float(np.abs(nb).max()))]
     if bad:
         raise ConstraintError(
-            "the balance laws cannot all hold: " + "; ".join(bad) + " contradict the others.",
-            hint="The model is over-constrained or a load has no reaction to carry it.")
+            f"the balance laws give {len(labels)} equations for {n} unknowns "
+            f"({', '.join(text(u) for u in unknowns)}), and {'; '.join(bad)} contradict the others.",
+            hint="The coordinates hold back motions that no constraint enforces: a constraint (with its "
+                 "reaction) is missing, or a load has no reaction to carry it. "
+                 f"{dof_note}")
     return keep
 
 
@@ -235,7 +237,11 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
     kin, red = setup.kin, setup.reduction
     exprs = [e.expr.xreplace(sign_map) for e in equations]
     A, b = linear_form(exprs, unknowns)
-    keep = _determinacy(A, b, unknowns, [e.label for e in equations])
+    red_ = setup.reduction
+    dof_note = (f"{len(red_.independent) + len(red_.dependent)} coordinates and {len(red_.relating)} "
+                f"rate-relating constraint rows leave {red_.dof} degree(s) of freedom; the constraints "
+                f"bring the reactions {', '.join(map(str, setup.reactions)) or 'none'}.")
+    keep = _determinacy(A, b, unknowns, [e.label for e in equations], dof_note)
     x = solve_square(A.extract(keep, list(range(len(unknowns)))), -b.extract(keep, [0]),
                      simplify=kin.simplify_expr)
     solved = dict(zip(unknowns, x))

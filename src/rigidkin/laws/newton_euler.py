@@ -73,14 +73,14 @@ def body_balances(setup: ModeSetup) -> list[BodyBalance]:
     cache = setup.__dict__.setdefault("_law_cache", {})
     if key in cache:
         return cache[key]
-    kin, red = setup.kin, setup.reduction
+    kin = setup.kin
     out = []
     for body in setup.system.bodies.values():
         F, M, _ = body_loads(setup, body)
         G = body.centre
         w = kin.omega_of(body)
         H = body.inertia.dot(w) if not body.is_massless else Vector(0)
-        dH = H.dt(kin.F.ref) if H != Vector(0) else Vector(0)
+        dH = H.dt(kin.F.ref) if Vector(0) != H else Vector(0)
         a = kin.acceleration(G) if not body.is_massless else Vector(0)
         out.append(BodyBalance(body, _ind(setup, F), _ind(setup, M), _ind(setup, body.mass * a),
                                _ind(setup, dH), _ind(setup, w), _ind(setup, kin.velocity(G))))

@@ -239,8 +239,9 @@ class Contact(Constraint):
             return []
         return [SlidingFriction(self.name, body=self.body, centre=self.centre, radius=self.radius,
                                 normal=self.normal(kin), mu=self.friction.mu, normal_force=self.N,
-                                against_body=self.surface.body, normal_unilateral=self.unilateral,
-                                sign_symbol=sp.Symbol(f"sigma_{self.name}"))]
+                                against_body=self.surface.body,
+                                against_point=self.surface.anchor if self.surface.body is None else None,
+                                normal_unilateral=self.unilateral, sign_symbol=sp.Symbol(f"sigma_{self.name}"))]
 
 
 @dataclass(eq=False)

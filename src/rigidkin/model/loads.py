@@ -326,3 +326,25 @@ class SlidingFriction(Load):
                                    f"sliding friction {self.name} on {self.against_body.name}", self.name,
                                    location=loc))
         return out
+
+
+@dataclass(eq=False)
+class Impulse(Load):
+    """An impulse F̂ (a force integrated over an instant) at ``point`` of ``body``.
+
+    It has no finite force during the motion (``applications`` is empty); the impulse–momentum law
+    reads ``impulses``.
+    """
+
+    body: object = None
+    point: Point = None
+    vector: Vector = None
+
+    kind = "impulse"
+
+    def applications(self, kin):
+        return []
+
+    def impulses(self, kin) -> list[Application]:
+        return [Application(self.body, self.point, self.vector, self.description or f"impulse {self.name}",
+                            self.name)]

@@ -89,7 +89,6 @@ class System:
     def parameter(self, name: str, unit: str | None = None, description: str = "", value=None,
                   dimension: str | Dimension | None = None, positive: bool = True) -> sp.Symbol:
         """Declare a parameter; returns its positive real sympy Symbol."""
-        self._claim(name, "parameter")
         where = f"parameter {name}"
         if unit is not None:
             dim = unit_dimension(unit, where)
@@ -104,6 +103,7 @@ class System:
             dim = ONE
         val = None if value is None else to_si(value, unit if isinstance(value, str) else None, where)
         sym = sp.Symbol(name, positive=True) if positive else sp.Symbol(name, real=True)
+        self._claim(name, "parameter")
         self._parameters[name] = Parameter(name, sym, description, unit or "", dim, val)
         return sym
 
@@ -409,6 +409,13 @@ class System:
         return self._add_load(L.Damper(name, point_a=pa, body_a=self._body_of(pa, body_a, where), law=law,
                                        along=None if along is None else self._check_vector(along, where),
                                        point_b=pb, body_b=bb, description=description))
+
+    def impulse(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "") -> L.Impulse:
+        """An impulse F̂ applied at ``point`` (used by the impulse–momentum law)."""
+        where = f"impulse {name}"
+        p = self._check_point(point, where)
+        return self._add_load(L.Impulse(name, body=self._body_of(p, body, where), point=p,
+                                        vector=self._check_vector(vector, where), description=description))
 
     def friction(self, name: str, body, centre: Point | str, normal: Vector, mu, normal_force, radius=0,
                  against_body=None, against_point: Point | str | None = None,

@@ -1,0 +1,98 @@
+"""Bad models raise ModelError/ConstraintError naming what is involved and the degrees of freedom."""
+
+import pytest
+import sympy as sp
+
+import rigidkin as rk
+from rigidkin.errors import ConstraintError, ModelError
+
+
+def pendulum():
+    s = rk.System("pendulum")
+    m, l, g = s.parameter("m", "kg"), s.parameter("l", "m"), s.parameter("g", "m/s^2")
+    th = s.coordinate("theta", "from the downward vertical")
+    R = s.frame("R", angle=th)
+    G = s.point("G", offset=-l / 2 * R.y)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=G)
+    s.gravity(g)
+    return s, rod, th, R, l
+
+
+def test_under_determined_missing_support():
+    # a rod on a pin needs the pin; without it the vertical force balance cannot hold
+    s, rod, *_ = pendulum()
+    with pytest.raises(ModelError) as err:
+        s.solve()
+    msg = str(err.value)
+    assert "Euler's 1st law for rod along Ey" in msg and "1 degree(s) of freedom" in msg
+    assert "constraint (with its reaction) is missing" in msg
+
+
+def test_over_constrained_names_constraints_and_dof():
+    s = rk.System("slider")
+    m = s.parameter("m", "kg")
+    x = s.coordinate("x", "position along Ex", kind="length")
+    y = s.coordinate("y", "height", kind="length")
+    F = s.inertial
+    C = s.point("C", offset=x * F.x + y * F.y)
+    b = s.body("block", rk.shapes.PointMass(m), frame=F, at=C)
+    s.contact("floor", b, s.line(s.origin, F.y))
+    s.contact("floor2", b, s.line(s.origin, F.y))
+    with pytest.raises(ConstraintError) as err:
+        s.solve()
+    msg = str(err.value)
+    assert "floor2" in msg and "over-constrained" in msg and "1 degrees of freedom" in msg
+
+
+def test_structure_has_no_dof():
+    s = rk.System("stuck")
+    m = s.parameter("m", "kg")
+    x = s.coordinate("x", "along Ex", kind="length")
+    F = s.inertial
+    C = s.point("C", offset=x * F.x)
+    b = s.body("block", rk.shapes.PointMass(m), frame=F, at=C)
+    s.contact("wall", b, s.line(s.origin, F.x))
+    with pytest.raises(ConstraintError, match="no degree of freedom"):
+        s.solve()
+
+
+def test_statically_indeterminate_reactions_named():
+    # a pendulum held by two coincident pins: the pin reactions cannot be separated
+    s, rod, th, R, l = pendulum()
+    s.pin("O", s.origin, rod)
+    s.pin("O2", s.origin, rod)
+    with pytest.raises(ConstraintError) as err:
+        s.solve()
+    assert "R_O" in str(err.value) and "R_O2" in str(err.value)
+
+
+def test_unknown_names_and_wrong_objects():
+    s, rod, th, R, l = pendulum()
+    with pytest.raises(ModelError, match="already used"):
+        s.parameter("m", "kg")
+    with pytest.raises(ModelError, match="no point named 'Q'"):
+        s.pin("P", "Q", rod)
+    with pytest.raises(ModelError, match="expected a vector"):
+        s.point("Z", offset=3)
+    with pytest.raises(rk.RigidkinError, match="not a unit"):
+        s.parameter("k", "furlongs_per_blorp")
+    with pytest.raises(ModelError, match="friction must be"):
+        s.contact("c", rod, s.line(s.origin, s.inertial.y), friction="sticky")
+    with pytest.raises(ModelError, match="mode names 'nope'"):
+        s.pin("O", s.origin, rod)
+        s.solve(mode={"nope": "open"})
+
+
+def test_force_on_a_point_without_body():
+    s, rod, th, R, l = pendulum()
+    Q = s.point("Q", offset=l * s.inertial.x)
+    with pytest.raises(ModelError, match="not fixed in a body"):
+        s.force("push", Q, 3 * s.inertial.x)
+
+
+def test_pendulum_doctest_value():
+    s, rod, th, R, l = pendulum()
+    s.pin("O", s.origin, rod)
+    sol = s.solve()
+    g = s.parameters["g"]
+    assert sp.simplify(sol.accelerations[th] + 3 * g * sp.sin(th) / (2 * l)) == 0
