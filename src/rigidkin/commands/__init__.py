@@ -1,0 +1,1 @@
+"""Subcommands of the ``rigidkin`` command line, one module each (``register(subparsers)``)."""
