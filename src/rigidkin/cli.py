@@ -41,6 +41,8 @@ def main(argv: list[str] | None = None) -> int:
             raise
         print(f"rigidkin: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        return 0
     except KeyboardInterrupt:
         print("rigidkin: interrupted", file=sys.stderr)
         return 130
