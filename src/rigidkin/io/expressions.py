@@ -1,0 +1,486 @@
+"""The safe expression language of problem files: a restricted parser that builds sympy objects.
+
+A string such as ``"l/2*sin(theta)"``, ``"-K*(x - L0)"`` or ``"l/2*R.y"`` is parsed with Python's
+``ast`` module and the tree is walked against a whitelist; sympy objects are built node by node.
+Nothing is evaluated by Python (no ``eval``, ``exec``, ``sympify`` or ``parse_expr``).
+
+The language:
+
+* numbers (finite, real), declared names (parameters, coordinates, ``t``, ``pi``), ``+ - * / **``,
+  unary minus, parentheses;
+* ``**`` with a numeric exponent of at most ``MAX_EXPONENT`` in magnitude, no powers inside an
+  exponent (``9**9**9**9`` is refused), and no number with more than ``MAX_DIGITS`` digits;
+* the functions ``sin cos tan asin acos atan atan2 sqrt exp log abs sign``;
+* ``dot(q)`` and ``ddot(q)``: the first and second time derivatives of a coordinate q;
+* basis vectors where a vector is expected: ``FRAME.x`` / ``FRAME.y`` / ``FRAME.z``, ``FRAME.<basis
+  name>`` (``F.Ex``, ``A.er``), or a basis name alone when only one frame has it (``Ex``, ``er``);
+* equations ``"lhs = rhs"`` (an ``sp.Eq``) and conditions ``"lhs > rhs"`` (``<``, ``<=``, ``>=``).
+
+Everything else — attribute access other than ``FRAME.axis``, subscripts, lambdas, comprehensions,
+strings, comparisons in an expression, calls of other names, dunder names, undeclared names — is
+refused with an :class:`~rigidkin.errors.InputError` that says which construct and at which column.
+The size of the input is bounded (length, nesting depth, number of nodes), so parsing never hangs.
+"""
+
+from __future__ import annotations
+
+import ast
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+import sympy as sp
+from sympy.physics.vector import Vector, dynamicsymbols
+
+from ..errors import InputError
+
+t = dynamicsymbols._t
+
+#: Limits on an expression string.
+MAX_LENGTH = 1000          # characters
+MAX_NESTING = 20           # nested brackets
+MAX_DEPTH = 100            # depth of the syntax tree
+MAX_NODES = 400            # nodes of the syntax tree
+MAX_EXPONENT = 100         # |p| in x**p
+MAX_DIGITS = 40            # digits of a number (written or computed)
+
+#: The whitelisted functions: name → (sympy function, number of arguments).
+FUNCTIONS: dict[str, tuple[Callable, int]] = {
+    "sin": (sp.sin, 1), "cos": (sp.cos, 1), "tan": (sp.tan, 1),
+    "asin": (sp.asin, 1), "acos": (sp.acos, 1), "atan": (sp.atan, 1), "atan2": (sp.atan2, 2),
+    "sqrt": (sp.sqrt, 1), "exp": (sp.exp, 1), "log": (sp.log, 1), "abs": (sp.Abs, 1), "sign": (sp.sign, 1),
+}
+
+#: Names that the language itself gives a meaning: they cannot be declared as parameters, coordinates,
+#: frames or basis vectors.
+RESERVED = frozenset(FUNCTIONS) | {"dot", "ddot", "t", "pi", "slip"}
+
+#: ``slip(contact)`` in an event condition: the slip speed at a contact, as an unevaluated function
+#: of a symbol named after the contact (``slip(ground)`` → ``slip(Symbol('ground'))``).
+slip = sp.Function("slip")
+
+_CONSTRUCTS = {
+    ast.Subscript: "a subscript ([...])", ast.Lambda: "a lambda expression", ast.ListComp: "a list comprehension",
+    ast.SetComp: "a set comprehension", ast.DictComp: "a dict comprehension",
+    ast.GeneratorExp: "a generator expression", ast.List: "a list ([...])", ast.Tuple: "a tuple (a, b)",
+    ast.Set: "a set ({...})", ast.Dict: "a dict ({...})", ast.Compare: "a comparison",
+    ast.BoolOp: "'and'/'or'", ast.IfExp: "a conditional expression (if/else)", ast.JoinedStr: "an f-string",
+    ast.FormattedValue: "an f-string", ast.NamedExpr: "an assignment expression (:=)", ast.Await: "'await'",
+    ast.Yield: "'yield'", ast.YieldFrom: "'yield from'", ast.Starred: "a starred expression (*x)",
+    ast.Slice: "a slice (a:b)",
+}
+_OPERATORS = {
+    ast.FloorDiv: "//", ast.Mod: "%", ast.MatMult: "@", ast.BitXor: "^ (write ** for a power)",
+    ast.BitAnd: "&", ast.BitOr: "|", ast.LShift: "<<", ast.RShift: ">>", ast.Invert: "~", ast.Not: "not",
+}
+_RELATIONS = {ast.Lt: sp.StrictLessThan, ast.Gt: sp.StrictGreaterThan, ast.LtE: sp.LessThan,
+              ast.GtE: sp.GreaterThan}
+_HINT = ("Expressions use numbers, declared names, + - * / ** and parentheses, the functions sin, cos, "
+         "sqrt ... (see rigidkin.io.expressions), dot(q), ddot(q) and basis vectors such as F.x or R.y.")
+
+
+@dataclass
+class Scope:
+    """What names mean in an expression.
+
+    ``names``: scalar names (parameter symbols, coordinates q(t), reaction symbols ...);
+    ``coordinates``: the names ``dot()``/``ddot()`` accept; ``frames``: frame name → {axis or basis
+    name → unit vector}; ``vectors``: basis names usable alone; ``ambiguous``: basis names that several
+    frames share (name → frames); ``functions``: extra functions, name → handler(arguments, node, parser).
+    """
+
+    names: dict[str, sp.Basic] = field(default_factory=dict)
+    coordinates: dict[str, sp.Basic] = field(default_factory=dict)
+    frames: dict[str, dict[str, Vector]] = field(default_factory=dict)
+    vectors: dict[str, Vector] = field(default_factory=dict)
+    ambiguous: dict[str, list[str]] = field(default_factory=dict)
+    functions: dict[str, Callable] = field(default_factory=dict)
+
+    def with_names(self, extra: Mapping[str, sp.Basic]) -> Scope:
+        """A copy of this scope with more scalar names (e.g. reaction names, the damper speed v)."""
+        return Scope({**self.names, **extra}, self.coordinates, self.frames, self.vectors, self.ambiguous,
+                     self.functions)
+
+    def with_functions(self, extra: Mapping[str, Callable]) -> Scope:
+        return Scope(self.names, self.coordinates, self.frames, self.vectors, self.ambiguous,
+                     {**self.functions, **extra})
+
+    def add_frame(self, name: str, basis: tuple[str, str, str], unit_vectors: tuple[Vector, Vector, Vector]):
+        """Make ``name.x/.y/.z`` and ``name.<basis>`` known, and each basis name alone when unambiguous."""
+        axes = dict(zip(("x", "y", "z"), unit_vectors))
+        axes.update(zip(basis, unit_vectors))
+        self.frames[name] = axes
+        for b, v in zip(basis, unit_vectors):
+            owners = self.ambiguous.get(b) or [f for f, ax in self.frames.items() if f != name and b in ax
+                                               and b in self.vectors and ax[b] is self.vectors[b]]
+            if owners:
+                self.ambiguous[b] = [*owners, name]
+                self.vectors.pop(b, None)
+            else:
+                self.vectors[b] = v
+
+
+def default_scope() -> Scope:
+    """A scope with only ``t`` and ``pi``."""
+    return Scope(names={"t": t, "pi": sp.pi})
+
+
+# --------------------------------------------------------------------------------------------------
+def _snippet(text: str) -> str:
+    s = text if len(text) <= 60 else text[:57] + "..."
+    return repr(s)
+
+
+class _Parser:
+    def __init__(self, text: str, scope: Scope, where: str | None, offset: int = 0):
+        self.text, self.scope, self.where, self.offset = text, scope, where, offset
+
+    def fail(self, message: str, node: ast.AST | None = None, hint: str | None = _HINT) -> InputError:
+        col = getattr(node, "col_offset", None)
+        at = f" at column {col + 1 + self.offset}" if col is not None else ""
+        return InputError(f"in the expression {_snippet(self.text)}{at}: {message}.", where=self.where, hint=hint)
+
+    # entry --------------------------------------------------------------------------------------
+    def tree(self, source: str) -> ast.expr:
+        depth = deepest = 0
+        for ch in source:
+            if ch in "([{":
+                depth += 1
+                deepest = max(deepest, depth)
+            elif ch in ")]}":
+                depth -= 1
+        if deepest > MAX_NESTING:
+            raise self.fail(f"brackets are nested {deepest} deep (at most {MAX_NESTING})", hint=None)
+        try:
+            tree = ast.parse(source.strip(), mode="eval")
+        except SyntaxError as exc:
+            col = f" at column {exc.offset + self.offset}" if exc.offset else ""
+            raise InputError(f"the expression {_snippet(self.text)} is not valid syntax{col} ({exc.msg}).",
+                             where=self.where, hint=_HINT) from None
+        except (ValueError, RecursionError, MemoryError, OverflowError) as exc:
+            raise InputError(f"the expression {_snippet(self.text)} cannot be read ({type(exc).__name__}).",
+                             where=self.where, hint=_HINT) from None
+        # bounded size and depth, counted without recursion
+        count, stack = 0, [(tree.body, 1)]
+        while stack:
+            node, d = stack.pop()
+            count += 1
+            if count > MAX_NODES:
+                raise self.fail(f"it has more than {MAX_NODES} parts; split it or simplify it", hint=None)
+            if d > MAX_DEPTH:
+                raise self.fail(f"it is nested more than {MAX_DEPTH} levels deep", hint=None)
+            stack.extend((c, d + 1) for c in ast.iter_child_nodes(node))
+        return tree.body
+
+    # nodes --------------------------------------------------------------------------------------
+    def build(self, node: ast.AST):
+        method = getattr(self, f"_{type(node).__name__}", None)
+        if method is not None:
+            return method(node)
+        if type(node) in _CONSTRUCTS:
+            raise self.fail(f"{_CONSTRUCTS[type(node)]} is not allowed", node)
+        raise self.fail(f"the construct '{type(node).__name__}' is not allowed", node)
+
+    def _Constant(self, node: ast.Constant):
+        v = node.value
+        if isinstance(v, bool) or v is None or v is Ellipsis:
+            raise self.fail(f"the constant {v!r} is not a number", node)
+        if isinstance(v, str | bytes):
+            raise self.fail("a string literal is not allowed (names are written without quotes)", node)
+        if isinstance(v, complex):
+            raise self.fail("complex numbers are not allowed", node)
+        if isinstance(v, int):
+            if len(str(abs(v))) > MAX_DIGITS:
+                raise self.fail(f"the number has more than {MAX_DIGITS} digits", node)
+            return sp.Integer(v)
+        if isinstance(v, float):
+            if not math.isfinite(v):
+                raise self.fail(f"the number {v} is not finite", node)
+            return sp.Float(v)
+        raise self.fail(f"the constant {v!r} is not allowed", node)
+
+    def _Name(self, node: ast.Name):
+        name = node.id
+        if name.startswith("__") and name.endswith("__") or name.startswith("_"):
+            raise self.fail(f"the name '{name}' is not allowed (names starting with '_', such as dunder names, "
+                            "are refused)", node)
+        if not name.isascii():
+            raise self.fail(f"the name '{name}' is not ASCII", node)
+        sc = self.scope
+        if name in sc.names:
+            return sc.names[name]
+        if name in sc.vectors:
+            return sc.vectors[name]
+        if name in sc.ambiguous:
+            frames = sc.ambiguous[name]
+            raise self.fail(f"the basis name '{name}' belongs to several frames ({', '.join(frames)})", node,
+                            hint=f"Write {frames[0]}.{name} or {frames[1]}.{name}.")
+        if name in sc.frames:
+            raise self.fail(f"'{name}' is a frame, not a vector", node,
+                            hint=f"Name one of its basis vectors: {name}.x, {name}.y or {name}.z.")
+        if name in FUNCTIONS or name in ("dot", "ddot") or name in sc.functions:
+            raise self.fail(f"'{name}' is a function; call it with an argument, e.g. {name}(...)", node)
+        known = sorted(set(sc.names) | set(sc.vectors))
+        shown = ", ".join(known[:25]) + (", ..." if len(known) > 25 else "")
+        raise self.fail(f"the name '{name}' is not declared", node,
+                        hint=f"Declare it (as a parameter or coordinate) or use a known name: {shown}.")
+
+    def _Attribute(self, node: ast.Attribute):
+        attr = node.attr
+        if attr.startswith("_"):
+            raise self.fail(f"attribute access '.{attr}' is not allowed (names starting with '_', such as "
+                            "dunder names, are refused)", node)
+        if not isinstance(node.value, ast.Name) or node.value.id not in self.scope.frames:
+            raise self.fail(f"attribute access '.{attr}' is not allowed: only FRAME.axis names a basis vector",
+                            node)
+        axes = self.scope.frames[node.value.id]
+        if attr not in axes:
+            raise self.fail(f"'{attr}' is not an axis of frame {node.value.id}", node,
+                            hint=f"Use one of: {', '.join(axes)}.")
+        return axes[attr]
+
+    def _UnaryOp(self, node: ast.UnaryOp):
+        if isinstance(node.op, ast.USub):
+            return -self.build(node.operand)
+        if isinstance(node.op, ast.UAdd):
+            return self.build(node.operand)
+        raise self.fail(f"the operator {_OPERATORS.get(type(node.op), type(node.op).__name__)} is not allowed",
+                        node)
+
+    def _BinOp(self, node: ast.BinOp):
+        op = type(node.op)
+        if op in _OPERATORS:
+            raise self.fail(f"the operator {_OPERATORS[op]} is not allowed", node)
+        if op is ast.Pow:
+            return self._power(node)
+        a, b = self.build(node.left), self.build(node.right)
+        va, vb = isinstance(a, Vector), isinstance(b, Vector)
+        if op in (ast.Add, ast.Sub):
+            if va != vb:
+                scalar = b if va else a
+                if scalar != 0:
+                    raise self.fail("a vector and a scalar cannot be added", node,
+                                    hint="Multiply the scalar by a basis vector (e.g. l*R.y).")
+                a, b = (a, Vector(0)) if va else (Vector(0), b)
+            return a + b if op is ast.Add else a - b
+        if op is ast.Mult:
+            if va and vb:
+                raise self.fail("two vectors cannot be multiplied", node,
+                                hint="A vector is a scalar times a basis vector, e.g. l/2*R.y.")
+            return a * b
+        if op is ast.Div:
+            if vb:
+                raise self.fail("cannot divide by a vector", node)
+            if not va and b == 0:
+                raise self.fail("division by zero", node)
+            return a / b
+        raise self.fail(f"the operator {op.__name__} is not allowed", node)
+
+    def _power(self, node: ast.BinOp):
+        for sub in ast.walk(node.right):
+            if isinstance(sub, ast.BinOp) and isinstance(sub.op, ast.Pow):
+                raise self.fail("a power inside an exponent (a tower such as 9**9**9) is not allowed", node,
+                                hint=f"Exponents must be numbers of magnitude at most {MAX_EXPONENT}.")
+        base, expo = self.build(node.left), self.build(node.right)
+        if isinstance(base, Vector) or isinstance(expo, Vector):
+            raise self.fail("a vector cannot be raised to a power or be an exponent", node)
+        if not expo.is_number:
+            raise self.fail(f"the exponent {expo} is not a number", node,
+                            hint=f"Exponents must be numbers of magnitude at most {MAX_EXPONENT}.")
+        e = complex(sp.N(expo))
+        if e.imag or not math.isfinite(e.real) or abs(e.real) > MAX_EXPONENT:
+            raise self.fail(f"the exponent {expo} is too large (at most {MAX_EXPONENT} in magnitude)", node)
+        if base.is_number:
+            b = complex(sp.N(base))
+            if b != 0 and abs(e.real) * math.log10(abs(b)) > MAX_DIGITS * 25:
+                raise self.fail("the power is too large a number", node)
+            if b == 0 and e.real < 0:
+                raise self.fail("division by zero (0 to a negative power)", node)
+        result = base**expo
+        for p in sp.preorder_traversal(result):
+            if isinstance(p, sp.Pow) and p.exp.is_number and abs(complex(sp.N(p.exp)).real) > MAX_EXPONENT:
+                raise self.fail(f"the combined exponent {p.exp} is too large (at most {MAX_EXPONENT})", node)
+        return result
+
+    def _Call(self, node: ast.Call):
+        if not isinstance(node.func, ast.Name):
+            if isinstance(node.func, ast.Attribute):
+                self._Attribute(node.func)           # refuses dunders and attribute access first
+            raise self.fail("only the whitelisted functions can be called", node)
+        name = node.func.id
+        if name.startswith("_"):
+            raise self.fail(f"the name '{name}' is not allowed (names starting with '_', such as dunder "
+                            "names, are refused)", node)
+        if node.keywords:
+            raise self.fail(f"keyword arguments in {name}(...) are not allowed", node)
+        if any(isinstance(a, ast.Starred) for a in node.args):
+            raise self.fail(f"starred arguments in {name}(...) are not allowed", node)
+        if name in ("dot", "ddot"):
+            return self._derivative(node, name)
+        if name in self.scope.functions:
+            return self.scope.functions[name](node.args, node, self)
+        if name not in FUNCTIONS:
+            what = "is not a function" if name in self.scope.names else "is not a known function"
+            raise self.fail(f"'{name}' {what}", node, hint=f"The functions are {', '.join(FUNCTIONS)}, "
+                                                              "dot and ddot.")
+        fn, arity = FUNCTIONS[name]
+        if len(node.args) != arity:
+            raise self.fail(f"{name} takes {arity} argument{'s' if arity > 1 else ''}, not {len(node.args)}", node)
+        args = [self.build(a) for a in node.args]
+        if any(isinstance(a, Vector) for a in args):
+            raise self.fail(f"{name} of a vector is not defined", node)
+        return fn(*args)
+
+    def _derivative(self, node: ast.Call, name: str):
+        if len(node.args) != 1 or not isinstance(node.args[0], ast.Name):
+            raise self.fail(f"{name}() takes the name of one coordinate, e.g. {name}(theta)", node)
+        q = node.args[0].id
+        if q not in self.scope.coordinates:
+            known = ", ".join(self.scope.coordinates) or "none"
+            raise self.fail(f"'{q}' is not a coordinate, so {name}({q}) is not defined", node,
+                            hint=f"The coordinates are: {known}.")
+        return self.scope.coordinates[q].diff(t, 1 if name == "dot" else 2)
+
+    # results ------------------------------------------------------------------------------------
+    def check(self, value):
+        if isinstance(value, Vector):
+            for measure, _frame in value.args:
+                for comp in measure:
+                    self.check(sp.sympify(comp))
+            return value
+        if not isinstance(value, sp.Basic):
+            raise self.fail(f"the result {value!r} is not an expression")
+        if value.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+            raise self.fail("it evaluates to an infinite or undefined value (division by zero?)", hint=None)
+        if value.has(sp.I):
+            raise self.fail("it evaluates to a complex number", hint="Expressions must be real.")
+        return value
+
+
+def _prepare(text, where: str | None) -> str:
+    if isinstance(text, bool) or not isinstance(text, str | int | float):
+        raise InputError(f"expected an expression (a string) or a number, not {type(text).__name__}.",
+                         where=where)
+    if isinstance(text, int | float):
+        return text
+    if len(text) > MAX_LENGTH:
+        raise InputError(f"the expression is {len(text)} characters long (at most {MAX_LENGTH}).", where=where,
+                         hint="Split the problem into parameters, or simplify the expression.")
+    if "\x00" in text:
+        raise InputError("the expression contains a NUL character.", where=where)
+    if not text.strip():
+        raise InputError("the expression is empty.", where=where, hint="Write an expression, e.g. \"l/2\".")
+    return text
+
+
+def _number(value, where):
+    if isinstance(value, int):
+        if len(str(abs(value))) > MAX_DIGITS:
+            raise InputError(f"the number has more than {MAX_DIGITS} digits.", where=where)
+        return sp.Integer(value)
+    if not math.isfinite(value):
+        raise InputError(f"the number {value} is not finite.", where=where, hint="Give a finite real number.")
+    return sp.Float(value)
+
+
+def parse(text: str | int | float, scope: Scope, where: str | None = None, want: str = "scalar"):
+    """Parse an expression into a sympy expression (``want="scalar"``) or a Vector (``want="vector"``).
+
+    ``want="any"`` returns whichever it is.  Numbers given directly (TOML integers and floats) are
+    accepted as they are; a vector field also accepts the number 0 (the zero vector).
+    """
+    text = _prepare(text, where)
+    if isinstance(text, int | float):
+        value = _number(text, where)
+    else:
+        p = _Parser(text, scope, where)
+        value = p.check(p.build(p.tree(text)))
+    return _want(value, want, text, where)
+
+
+def _want(value, want, text, where):
+    is_vec = isinstance(value, Vector)
+    if want == "vector" and not is_vec:
+        if value == 0:
+            return Vector(0)
+        raise InputError(f"the expression {_snippet(str(text))} is a scalar where a vector is expected.",
+                         where=where, hint="Multiply by a basis vector, e.g. \"l/2*R.y\" or \"-l*er\".")
+    if want == "scalar" and is_vec:
+        raise InputError(f"the expression {_snippet(str(text))} is a vector where a scalar is expected.",
+                         where=where, hint="Write a scalar expression (no basis vectors).")
+    return value
+
+
+def parse_scalar(text, scope: Scope, where: str | None = None) -> sp.Expr:
+    """A scalar expression."""
+    return parse(text, scope, where, "scalar")
+
+
+def parse_vector(text, scope: Scope, where: str | None = None) -> Vector:
+    """A vector expression: scalars times basis vectors."""
+    return parse(text, scope, where, "vector")
+
+
+def _split_equation(text: str, where) -> tuple[str, str, int]:
+    positions = [i for i, ch in enumerate(text) if ch == "="
+                 and (i == 0 or text[i - 1] not in "=<>!") and (i + 1 == len(text) or text[i + 1] != "=")]
+    if "==" in text:
+        raise InputError(f"the equation {_snippet(text)} uses '=='.", where=where,
+                         hint="Write an equation with a single '=', e.g. \"N_A = 0\".")
+    if len(positions) != 1:
+        raise InputError(f"{_snippet(text)} is not an equation: it needs exactly one '=' "
+                         f"(it has {len(positions)}).", where=where,
+                         hint="Write it as \"lhs = rhs\", e.g. \"N_A = 0\".")
+    i = positions[0]
+    return text[:i], text[i + 1:], i + 1
+
+
+def parse_equation(text, scope: Scope, where: str | None = None) -> sp.Eq:
+    """An equation ``"lhs = rhs"`` between scalars, as an unevaluated ``sp.Eq``."""
+    text = _prepare(text, where)
+    if not isinstance(text, str):
+        raise InputError(f"expected an equation such as \"N_A = 0\", not the number {text}.", where=where)
+    left, right, split = _split_equation(text, where)
+    sides = []
+    for part, offset in ((left, 0), (right, split)):
+        if not part.strip():
+            raise InputError(f"the equation {_snippet(text)} has an empty side.", where=where,
+                             hint="Write it as \"lhs = rhs\", e.g. \"N_A = 0\".")
+        p = _Parser(part, scope, where, offset)
+        p.text = text
+        sides.append(_want(p.check(p.build(p.tree(part))), "scalar", text, where))
+    return sp.Eq(sides[0], sides[1], evaluate=False)
+
+
+def parse_condition(text, scope: Scope, where: str | None = None) -> sp.core.relational.Relational:
+    """A condition ``"lhs > rhs"`` (or ``<``, ``<=``, ``>=``) between scalars, unevaluated."""
+    text = _prepare(text, where)
+    if not isinstance(text, str):
+        raise InputError(f"expected a condition such as \"dot(x) > 0\", not the number {text}.", where=where)
+    p = _Parser(text, scope, where)
+    node = p.tree(text)
+    if not isinstance(node, ast.Compare) or len(node.ops) != 1 or type(node.ops[0]) not in _RELATIONS:
+        raise InputError(f"{_snippet(text)} is not a condition.", where=where,
+                         hint="Write one comparison with <, >, <= or >=, e.g. \"dot(x) - r*dot(phi) > 0\".")
+    lhs = _want(p.check(p.build(node.left)), "scalar", text, where)
+    rhs = _want(p.check(p.build(node.comparators[0])), "scalar", text, where)
+    return _RELATIONS[type(node.ops[0])](lhs, rhs, evaluate=False)
+
+
+def check_name(name: str, kind: str, where: str | None = None) -> str:
+    """A name a problem file declares: an ASCII identifier, no leading underscore, not a reserved word."""
+    import keyword
+
+    if not isinstance(name, str) or not name.isidentifier() or not name.isascii():
+        raise InputError(f"'{name}' is not a valid name for a {kind}.", where=where,
+                         hint="Use ASCII letters, digits and underscores, starting with a letter.")
+    if name.startswith("_"):
+        raise InputError(f"the {kind} name '{name}' starts with '_'.", where=where,
+                         hint="Names start with a letter.")
+    if keyword.iskeyword(name) or name in ("True", "False", "None"):
+        raise InputError(f"the {kind} name '{name}' is a Python keyword and cannot be used in expressions.",
+                         where=where, hint="Choose another name.")
+    if name in RESERVED:
+        raise InputError(f"the {kind} name '{name}' shadows the built-in '{name}' of the expression language.",
+                         where=where, hint=f"Choose another name; reserved: {', '.join(sorted(RESERVED))}.")
+    return name
