@@ -7,6 +7,8 @@ parses unit strings with its own tokenizer and evaluator; nothing here calls ``e
 
 from __future__ import annotations
 
+import math
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -104,11 +106,33 @@ NAMED = {
 }
 
 
+#: pint evaluates powers with Python numbers: a tower such as ``9^9^9`` would never finish.
+_MAX_UNIT_TEXT = 100
+_POWER = re.compile(r"(\^|\*\*)")
+_SMALL_EXPONENT = re.compile(r"\s*[-+]?\d{1,2}(\.\d{1,3})?(?![\d.])(?!\s*(\^|\*\*))")
+
+
+def _screen(text: str, where: str | None) -> None:
+    """Refuse unit and quantity strings that pint could not read in bounded time (long ones, power towers)."""
+    bad = None
+    if len(text) > _MAX_UNIT_TEXT:
+        bad = f"is {len(text)} characters long (at most {_MAX_UNIT_TEXT})"
+    else:
+        for m in _POWER.finditer(text):
+            if not _SMALL_EXPONENT.match(text, m.end()):
+                bad = "has a power whose exponent is not a small number (at most two digits, no towers)"
+                break
+    if bad:
+        raise InputError(f"the unit or quantity '{text[:40]}{'...' if len(text) > 40 else ''}' {bad}.", where=where,
+                         hint="Write SI-style units such as kg, m, s, N, N/m, m/s^2, rad, deg.")
+
+
 @lru_cache(maxsize=512)
 def unit_dimension(unit: str, where: str | None = None) -> Dimension:
     """The dimension of a unit string such as ``"kg"``, ``"N/m"`` or ``"m/s^2"``."""
     if unit is None or str(unit).strip() in ("", "1", "-"):
         return ONE
+    _screen(str(unit), where)
     try:
         q = registry().parse_expression(str(unit))
     except Exception as exc:  # pint raises many kinds; all mean "not a unit"
@@ -127,6 +151,9 @@ def unit_dimension(unit: str, where: str | None = None) -> Dimension:
 def to_si(value: float | str, unit: str | None = None, where: str | None = None) -> float:
     """Convert ``value`` (a number in ``unit``, or a string such as ``"30 deg"``) to SI base units."""
     reg = registry()
+    for text in (value, unit):
+        if isinstance(text, str):
+            _screen(text, where)
     try:
         if isinstance(value, str):
             q = reg.Quantity(value)
@@ -137,10 +164,13 @@ def to_si(value: float | str, unit: str | None = None, where: str | None = None)
             if q.dimensionality != getattr(target, "dimensionality", {}):
                 raise InputError(f"'{value}' is not in units of {unit} (dimension "
                                  f"{q.dimensionality} instead of {target.dimensionality}).", where=where)
-        mag = q.to_base_units().magnitude
+        mag = float(q.to_base_units().magnitude)
     except InputError:
         raise
     except Exception as exc:
         raise InputError(f"cannot read the quantity '{value}' ({exc}).", where=where,
                          hint="Write a number, or a number and a unit such as '30 deg' or '2 ft'.") from None
-    return float(mag)
+    if not math.isfinite(mag):
+        raise InputError(f"the quantity '{value}' is not a finite number.", where=where,
+                         hint="Give a finite value, e.g. 9.81 or '30 deg'.")
+    return mag
