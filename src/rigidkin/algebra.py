@@ -10,7 +10,10 @@ confirmed symbolically when the expression is small.
 
 from __future__ import annotations
 
+import contextlib
 import random
+import signal
+import threading
 from collections.abc import Iterable, Mapping
 
 import sympy as sp
@@ -157,3 +160,33 @@ def substitute(expr, mapping: Mapping):
     if mapping:
         return expr.xreplace(mapping)
     return expr
+
+
+@contextlib.contextmanager
+def time_limit(seconds: float):
+    """Raise TimeoutError if the block runs longer than ``seconds`` (main thread only; else no limit).
+
+    sympy's ``solve`` can run for minutes on an equation it cannot solve; callers fall back to a
+    numerical method when the limit is hit.
+    """
+    if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "setitimer"):
+        yield
+        return
+
+    def handler(signum, frame):
+        raise TimeoutError(f"gave up after {seconds} s")
+
+    old = signal.signal(signal.SIGALRM, handler)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def is_transcendental_in(expr: sp.Basic, x: sp.Symbol) -> bool:
+    """True when ``x`` appears both bare and inside a function (θ = k sin θ): no closed-form root."""
+    inside = any(f.has(x) for f in expr.atoms(sp.Function))
+    bare = expr.xreplace({f: sp.Dummy() for f in expr.atoms(sp.Function) if f.has(x)}).has(x)
+    return inside and bare

@@ -4,7 +4,9 @@ A ``Question`` has a ``kind`` and parsed ``fields`` (sympy expressions, equation
 states as {coordinate or its rate: value}).  The problem-file reader builds them from TOML;
 ``rigidkin.analysis.answers.answer(system, question)`` answers them.
 
-Kinds and their fields (all optional unless marked):
+Kinds and their fields (all optional unless marked).  Every kind also takes ``mode`` (contact
+states), ``set`` (parameter substitutions) and ``after`` (the name of an earlier question whose end
+state is the start):
 
 ``eom``           the equations of motion (always answered by ``solve``)
 ``reaction``      ``reaction`` (name, required), ``start`` (state): the reaction along the motion from
@@ -13,6 +15,10 @@ Kinds and their fields (all optional unless marked):
 ``event``         ``when`` (an equation, required: ``N_A = 0``, ``dot(theta) = 0``, ``theta = 1``,
                   ``slip(ground) = 0``), ``start``, ``mode``: the configuration where it happens
 ``extreme``       ``coordinate`` (required), ``start``: the largest value reached
+``threshold``     ``holds`` (an inequality, required: ``N >= 0``), ``start``, ``over`` ([a, b], the range
+                  of the coordinate the motion must cover; default a full turn), ``expression`` (what to
+                  report at the threshold, e.g. ``(R - r)**2*dot(theta)**2`` for v²): the smallest start
+                  rate for which the condition holds along the whole motion
 ``equilibrium``   ``mode``: equilibrium configurations, linearised EOM, stability, natural frequencies
 ``impulse``       ``start``: velocities just after the system's impulses, and reaction impulses
 ``interval``      ``duration`` or ``until`` (equation), ``start``, ``mode``, ``regime`` (a condition):
@@ -27,11 +33,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-KINDS = ("eom", "reaction", "integral", "event", "extreme", "equilibrium", "impulse", "interval", "phases",
-         "value")
+KINDS = ("eom", "reaction", "integral", "event", "extreme", "threshold", "equilibrium", "impulse", "interval",
+         "phases", "value")
 
 REQUIRED = {"reaction": ("reaction",), "event": ("when",), "extreme": ("coordinate",),
-            "interval": (), "value": ("expression",), "phases": ("phase",)}
+            "interval": (), "value": ("expression",), "phases": ("phase",), "threshold": ("holds",)}
 
 
 @dataclass(frozen=True)

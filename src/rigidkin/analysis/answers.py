@@ -1,0 +1,241 @@
+"""Answering questions: one entry point for the ``[ask]`` section of a problem file and the Python API.
+
+``answer(system, question)`` solves what the question needs (the mode it names, or the default one)
+and returns an ``Answer``: an exact sympy value where a closed form exists, with a numeric reading at
+the parameters' values, or a number with its tolerance.  ``answer_all`` answers a list in order, so
+that a question can start ``after`` an earlier one (the extreme swing after an impulse).
+"""
+
+from __future__ import annotations
+
+import math
+
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from .. import algebra
+from ..errors import InputError, RigidkinError
+from ..printing import text
+from .equilibrium import equilibria
+from .events import _num, condition_expression, event, extreme, threshold
+from .integrals import along_motion, energy_integral
+from .phases import Phase, run_phases
+from .questions import KINDS, Answer, Question
+
+t = dynamicsymbols._t
+
+
+def _reading(expr, system, kind: str | None = None) -> str:
+    """' ≈ 0.8411 (48.19°)': the value at the parameters' values, when it is a number there."""
+    values = numeric_values_from(system)
+    try:
+        v = _num(expr, values)
+    except (TypeError, ValueError):
+        return ""
+    if math.isnan(v) or sp.sympify(expr).is_number and sp.sympify(expr).is_Integer:
+        return ""
+    missing = sp.sympify(expr).free_symbols - set(values)
+    if missing:
+        return ""
+    out = f" ≈ {v:.6g}"
+    if kind == "angle":
+        out += f" ({math.degrees(v):.4g}°)"
+    return out
+
+
+def numeric_values_from(system) -> dict:
+    return {p.symbol: p.value for p in system.parameter_info.values() if p.value is not None}
+
+
+def _kind_of(system, q) -> str | None:
+    try:
+        return system.coordinate_of(q).kind
+    except KeyError:
+        return None
+
+
+def _solution(system, fields):
+    mode = dict(fields.get("mode") or {})
+    subs = dict(fields.get("set") or {})
+    return system.solve(mode=mode, substitutions=subs)
+
+
+def _start(fields, context) -> dict:
+    start = dict(fields.get("start") or {})
+    after = fields.get("after")
+    if after:
+        if after not in context:
+            raise InputError(f"'after = {after}' names no earlier question.", hint="Ask that question first.")
+        prev = context[after]
+        end = prev.details.get("end_state")
+        if end is None:
+            raise InputError(f"the answer to '{after}' has no end state to start from.")
+        start = {**end, **start}
+    return start
+
+
+def answer(system, question: Question, context: dict | None = None) -> Answer:
+    """Answer one question about ``system``."""
+    context = context if context is not None else {}
+    kind, f = question.kind, dict(question.fields)
+    if kind not in KINDS:
+        raise InputError(f"unknown question kind '{kind}'.", where=question.where, hint=f"Kinds: {', '.join(KINDS)}.")
+    try:
+        return _HANDLERS[kind](system, question, f, context)
+    except RigidkinError as exc:
+        if question.where and not exc.where:
+            exc.where = question.where
+        raise
+
+
+def answer_all(system, questions) -> list[Answer]:
+    """Answer questions in order; each may start ``after`` an earlier one (by name)."""
+    context, out = {}, []
+    for q in questions:
+        a = answer(system, q, context)
+        context[q.name] = a
+        out.append(a)
+    return out
+
+
+# handlers -------------------------------------------------------------------------------------------
+def _eom(system, question, f, context):
+    sol = _solution(system, f)
+    if len(sol.regimes) == 1:
+        lines = [f"{text(e)} = 0" for e in sol.eom]
+        return Answer(question, tuple(sol.eom), "; ".join(lines))
+    parts = []
+    for r in sol.regimes:
+        parts.append(f"while {r.describe()}: " + "; ".join(f"{text(e)} = 0" for e in r.eom))
+    return Answer(question, tuple(r.eom for r in sol.regimes), " | ".join(parts))
+
+
+def _reaction(system, question, f, context):
+    sol = _solution(system, f)
+    name = str(f.get("reaction"))
+    regime = sol.regimes[0] if len(sol.regimes) == 1 else None
+    if regime is None:
+        raise RigidkinError("the reaction depends on the regime; say which with 'mode'.")
+    if name not in regime.reactions:
+        raise InputError(f"there is no reaction named '{name}'.", where=question.where,
+                         hint=f"Reactions: {', '.join(regime.reactions)}.")
+    start = _start(f, context)
+    if start and len(sol.coordinates) == 1:
+        integral = energy_integral(sol, start)
+        value = along_motion(sol, regime.reactions[name], integral)
+        return Answer(question, value, f"{name} = {text(value)} along the motion from "
+                                       f"{_state_text(integral.start, integral.coordinate)}",
+                      details={"integral": integral.equation})
+    value = regime.reactions[name]
+    return Answer(question, value, f"{name} = {text(value)}")
+
+
+def _state_text(start, q):
+    q0, u0 = start
+    return f"{text(q)} = {text(q0)}, {text(q.diff(t))} = {text(u0)}"
+
+
+def _integral(system, question, f, context):
+    sol = _solution(system, f)
+    integral = energy_integral(sol, _start(f, context))
+    lhs, rhs = integral.equation
+    return Answer(question, sp.Eq(lhs, rhs), f"{text(lhs)} = {text(rhs)}")
+
+
+def _event(system, question, f, context):
+    sol = _solution(system, f)
+    ev = event(sol, f["when"], _start(f, context), name=question.name)
+    if not ev.happens:
+        return Answer(question, None, f"never: {'; '.join(ev.notes)}", note="; ".join(ev.notes))
+    q = ev.coordinate
+    parts = [f"{text(k)} = {text(v)}{_reading(v, system, _kind_of(system, k))}"
+             for k, v in ev.configuration.items()]
+    end = dict(ev.configuration)
+    end[q.diff(t)] = ev.rate
+    return Answer(question, ev.value, ", ".join(parts) + f" ({text(ev.condition)} = 0)", exact=ev.exact,
+                  tolerance=ev.tolerance, note="; ".join(ev.notes),
+                  details={"configuration": ev.configuration, "rate": ev.rate, "end_state": end})
+
+
+def _extreme(system, question, f, context):
+    sol = _solution(system, f)
+    coord = f.get("coordinate")
+    ev = extreme(sol, coord, _start(f, context))
+    if not ev.happens:
+        return Answer(question, None, f"no turning point: {'; '.join(ev.notes)}", note="; ".join(ev.notes))
+    q = ev.coordinate
+    reading = _reading(ev.value, system, _kind_of(system, q))
+    return Answer(question, ev.value, f"{text(q)}_max = {text(ev.value)}{reading}",
+                  exact=ev.exact, tolerance=ev.tolerance, note="; ".join(ev.notes),
+                  details={"end_state": {**ev.configuration, q.diff(t): 0}})
+
+
+def _threshold(system, question, f, context):
+    sol = _solution(system, f)
+    over = f.get("over")
+    res = threshold(sol, f["holds"], _start(f, context), over=tuple(over) if over else None)
+    (q,) = sol.coordinates
+    out = f"the smallest start rate: {text(q.diff(t))}² = {text(res['rate_squared'])}"
+    value = res["rate_squared"]
+    expr = f.get("expression")
+    if expr is not None:
+        value = algebra.readable(sp.sympify(expr).xreplace({q.diff(t): res["rate"]}))
+        out += f"; {text(expr)} = {text(value)}"
+    out += f" (tightest at {text(q)} = {text(res['critical'])})"
+    return Answer(question, value, out, details=res)
+
+
+def _equilibrium(system, question, f, context):
+    sol = _solution(system, f)
+    eqs = equilibria(sol)
+    lines = [str(e) for e in eqs]
+    return Answer(question, tuple(eqs), "; ".join(lines), details={"equilibria": eqs})
+
+
+def _phases(system, question, f, context):
+    phases = []
+    for i, p in enumerate(f.get("phase") or []):
+        phases.append(Phase(str(p.get("name", f"phase {i + 1}")), dict(p.get("mode") or {}),
+                            dict(p.get("set") or {}), p.get("until")))
+    res = run_phases(system, phases, _start(f, context))
+    lines = []
+    for r in res:
+        line = str(r)
+        if r.happens and r.duration is not None:
+            rates = {k: v for k, v in r.end_state.items() if isinstance(k, sp.Derivative)}
+            line += "; at its end " + ", ".join(f"{text(k)} = {text(v)}" for k, v in rates.items())
+        if r.notes:
+            line += " [" + "; ".join(r.notes) + "]"
+        lines.append(line)
+    return Answer(question, tuple(res), "\n".join(lines), details={"phases": res,
+                                                                   "end_state": res[-1].end_state if res else {}})
+
+
+def _value(system, question, f, context):
+    sol = _solution(system, f)
+    at = _start({"start": f.get("at"), "after": f.get("after")}, context)
+    regime = sol.regime_at(at) if len(sol.regimes) > 1 else sol.regimes[0]
+    expr = condition_expression(sol, f["expression"], regime)
+    expr = expr.xreplace({q.diff(t, 2): a for q, a in regime.accelerations.items()})
+    rates = {k: v for k, v in at.items() if isinstance(k, sp.Derivative)}
+    value = algebra.readable(sp.sympify(expr).xreplace(rates).xreplace(
+        {k: v for k, v in at.items() if not isinstance(k, sp.Derivative)}))
+    return Answer(question, value, f"{text(f['expression'])} = {text(value)}{_reading(value, system)}")
+
+
+def _impulse_or_interval(system, question, f, context):
+    try:
+        from ..laws import impulse as impulse_law
+    except ImportError:
+        raise RigidkinError("the impulse–momentum law is not available in this version.") from None
+    handler = getattr(impulse_law, "answer", None)
+    if handler is None:
+        raise RigidkinError("the impulse–momentum law cannot answer questions yet.")
+    return handler(system, question, f, _start(f, context))
+
+
+_HANDLERS = {
+    "eom": _eom, "reaction": _reaction, "integral": _integral, "event": _event, "extreme": _extreme,
+    "threshold": _threshold, "equilibrium": _equilibrium, "phases": _phases, "value": _value,
+    "impulse": _impulse_or_interval, "interval": _impulse_or_interval,
+}

@@ -1,0 +1,144 @@
+"""Equilibria and linearisation: configurations at rest, linearised EOM, stability, natural frequencies.
+
+At an equilibrium every rate and acceleration vanishes: the accelerations of the solution, with the
+rates set to zero, give equations in the coordinates alone (solved in closed form where sympy can).
+About an equilibrium q_e the reaction-free equations M(q) q̈ = f(q, q̇) linearise to
+M δq̈ + C δq̇ + K δq = 0 with M = M(q_e), C = −∂f/∂q̇, K = −∂f/∂q at (q_e, 0).  One degree of
+freedom: ω_n = sqrt(K/M), ζ = C/(2 sqrt(K M)).  Several: det(K − ω² M) = 0 (exact when small).
+Stability is decided from the eigenvalues of the first-order system with the parameters' values.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from .. import algebra
+from ..errors import RigidkinError
+from ..printing import text
+from .events import _num, numeric_values
+from .integrals import single_regime
+
+t = dynamicsymbols._t
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """An equilibrium configuration with its linearisation."""
+
+    configuration: dict
+    M: sp.Matrix
+    C: sp.Matrix
+    K: sp.Matrix
+    linear_eom: tuple                      # expressions = 0 in the deviations δq (written as q)
+    natural_frequencies: tuple = ()        # exact ω_n (undamped) where found
+    damping_ratios: tuple = ()
+    eigenvalues: tuple = ()                # of the first-order system, numeric (parameter values)
+    stability: str = ""                    # "stable", "asymptotically stable", "unstable", "marginal"
+    notes: tuple = field(default=())
+
+    def __str__(self) -> str:
+        conf = ", ".join(f"{text(q)} = {text(v)}" for q, v in self.configuration.items())
+        out = f"equilibrium {conf}: {self.stability}"
+        if self.natural_frequencies:
+            out += "; ω_n = " + ", ".join(text(w) for w in self.natural_frequencies)
+        return out
+
+
+def _generalised(solution):
+    regime = single_regime(solution)
+    return regime, regime.mass_matrix, regime.forcing
+
+
+def equilibria(solution, limit: int = 8) -> list[Equilibrium]:
+    """Equilibrium configurations of a single-regime solution, each linearised."""
+    regime, M, f = _generalised(solution)
+    qs = list(solution.coordinates)
+    rates = {q.diff(t): 0 for q in qs}
+    plain = {q: sp.Symbol(q.func.__name__, real=True) for q in qs}
+    eqs = [algebra.readable(sp.sympify(e).xreplace(rates)).xreplace(plain) for e in f]
+    eqs = [e for e in eqs if e != 0]
+    if not eqs:
+        raise RigidkinError("every configuration is an equilibrium (no generalised force acts).")
+    try:
+        sols = sp.solve(eqs, [plain[q] for q in qs], dict=True)
+    except NotImplementedError:
+        sols = []
+    if not sols:
+        raise RigidkinError("sympy finds no closed-form equilibrium configuration.",
+                            hint="Search numerically with simulate(), or give the configuration to linearise().")
+    back = {v: k for k, v in plain.items()}
+    out = []
+    for sol in sols[:limit]:
+        conf = {back[k]: algebra.readable(v) for k, v in sol.items()}
+        for q in qs:
+            conf.setdefault(q, sp.Integer(0))
+        out.append(linearise(solution, conf))
+    return out
+
+
+def linearise(solution, at: dict) -> Equilibrium:
+    """Linearise the reaction-free EOM about the configuration ``at`` (rates zero)."""
+    regime, M, f = _generalised(solution)
+    qs = list(solution.coordinates)
+    us = [q.diff(t) for q in qs]
+    point = {**{u: 0 for u in us}, **at}
+    Kmat = (-f.jacobian(qs)).xreplace(point).applyfunc(algebra.readable)
+    Cmat = (-f.jacobian(us)).xreplace(point).applyfunc(algebra.readable)
+    Mmat = M.xreplace(point).applyfunc(algebra.readable)
+    n = len(qs)
+    acc = [q.diff(t, 2) for q in qs]
+    lin = []
+    for i in range(n):
+        e = sum((Mmat[i, j] * acc[j] + Cmat[i, j] * us[j] + Kmat[i, j] * qs[j] for j in range(n)), sp.Integer(0))
+        lin.append(algebra.readable(e))
+    values = numeric_values(solution)
+    # natural frequencies (undamped) where exact
+    freqs, zetas, notes = [], [], []
+    if n == 1:
+        k, m, c = Kmat[0, 0], Mmat[0, 0], Cmat[0, 0]
+        if _num(k / m, values) > 0:
+            wn = algebra.readable(sp.sqrt(k / m))
+            freqs.append(wn)
+            if c != 0:
+                zetas.append(algebra.readable(c / (2 * sp.sqrt(k * m))))
+    elif n <= 3:
+        w2 = sp.Symbol("_w2")
+        try:
+            roots = sp.solve((Kmat - w2 * Mmat).det(), w2)
+        except NotImplementedError:
+            roots = []
+        for r in roots:
+            if _num(r, values) > 0:
+                freqs.append(algebra.readable(sp.sqrt(r)))
+    # stability from the first-order system with numbers
+    Mn = np.array([[_num(Mmat[i, j], values) for j in range(n)] for i in range(n)])
+    Kn = np.array([[_num(Kmat[i, j], values) for j in range(n)] for i in range(n)])
+    Cn = np.array([[_num(Cmat[i, j], values) for j in range(n)] for i in range(n)])
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(Mn, Kn), -np.linalg.solve(Mn, Cn)]])
+    eig = np.linalg.eigvals(A)
+    re = eig.real.max()
+    if re > 1e-9:
+        stab = "unstable"
+    elif re < -1e-9:
+        stab = "asymptotically stable"
+    else:
+        kev = np.linalg.eigvals(np.linalg.solve(Mn, Kn)).real
+        neutral = int(np.sum(np.abs(kev) <= 1e-9 * max(1.0, np.abs(kev).max())))
+        if np.all(kev > -1e-9 * max(1.0, np.abs(kev).max())):
+            stab = "stable (undamped oscillation about it)"
+            if neutral:
+                stab += f", with {neutral} neutral mode(s) (free rigid-body motion)"
+        else:
+            stab = "marginal (linearisation inconclusive)"
+    notes.append("stability decided with the parameters' values: "
+                 + ", ".join(f"{k} = {v:g}" for k, v in values.items()))
+    for cond in regime.validity:
+        v = _num(cond.expr.xreplace(point), values)
+        if not cond.holds(v, 1e-9):
+            notes.append(f"but {cond.label} fails there ({text(cond.expr)} = {v:.4g})")
+    return Equilibrium(dict(at), Mmat, Cmat, Kmat, tuple(lin), tuple(freqs), tuple(zetas),
+                       tuple(complex(e) for e in eig), stab, tuple(notes))

@@ -1,0 +1,302 @@
+"""Events along a one-degree-of-freedom motion, in closed form where sympy can, numerically otherwise.
+
+An event is a condition g = 0 on the state: a reaction reaches zero (a contact opens), a slip speed
+vanishes, the rate vanishes (a turning point), a coordinate reaches a value.  Along a conservative
+motion the energy integral gives q̇² as a function of q, so g becomes a function of q alone and the
+event is a root of it: the first root beyond the start in the direction of motion, before the motion
+turns back.  Each answer says whether the event happens at all and whether every unilateral contact
+still pushes on the way there (otherwise a different contact opens first, and that is reported).
+Where sympy finds no closed form, the root is bracketed and refined numerically, and the tolerance
+is stated.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+from scipy.optimize import brentq
+from sympy.physics.vector import dynamicsymbols
+
+from .. import algebra
+from ..errors import RigidkinError
+from ..printing import text
+from .integrals import along_motion, energy_integral, single_regime
+
+t = dynamicsymbols._t
+
+#: Value used for a symbolic start value that has no number (to choose among candidate roots).
+DEFAULT_PROBE = 0.3
+
+
+@dataclass(frozen=True)
+class Event:
+    """Where (and whether) the condition ``condition = 0`` is met along the motion from ``start``."""
+
+    name: str
+    condition: sp.Expr
+    happens: bool
+    coordinate: sp.Expr
+    value: sp.Expr | None = None          # the coordinate at the event (exact when ``exact``)
+    rate: sp.Expr | None = None           # q̇ at the event
+    configuration: dict = field(default_factory=dict)   # every coordinate at the event
+    exact: bool = True
+    tolerance: float | None = None
+    notes: tuple = ()
+
+    def __str__(self) -> str:
+        if not self.happens:
+            return f"{self.name}: does not happen ({'; '.join(self.notes)})"
+        q = text(self.coordinate)
+        v = text(self.value) if self.exact else f"{float(self.value):.12g} (± {self.tolerance:g})"
+        return f"{self.name}: {q} = {v}"
+
+
+def numeric_values(solution, extra: dict | None = None) -> dict:
+    """Numbers for every parameter (its value, or 1) and for extra symbols (``extra`` or the probe)."""
+    vals = {}
+    for p in solution.system.parameter_info.values():
+        vals[p.symbol] = p.value if p.value is not None else 1.0
+    for k, v in (extra or {}).items():
+        vals[k] = v
+    return vals
+
+
+def _num(expr, values: dict) -> float:
+    e = sp.sympify(expr)
+    free = e.free_symbols - set(values)
+    sub = {**values, **{s: DEFAULT_PROBE for s in free}}
+    val = complex(e.xreplace({k: sp.Float(v) for k, v in sub.items()}).evalf())
+    return val.real if abs(val.imag) < 1e-9 * max(1, abs(val.real)) else float("nan")
+
+
+def condition_expression(solution, when, regime=None) -> sp.Expr:
+    """``when`` (an Eq, or an expression meaning = 0) as an expression of the state, names resolved.
+
+    Reaction names become their solved expressions (in ``regime``, default the single one);
+    ``slip(contact)`` becomes the contact's slip speed.
+    """
+    if isinstance(when, sp.Eq):
+        expr = when.lhs - when.rhs
+    else:
+        expr = sp.sympify(when)
+    regime = regime or single_regime(solution)
+    setup = solution.setup
+    repl = {}
+    for name, value in regime.reactions.items():
+        for s in expr.free_symbols:
+            if s.name == name:
+                repl[s] = value
+    for f in expr.atoms(sp.Function):
+        if f.func.__name__ == "slip":
+            cname = str(f.args[0])
+            c = solution.system.constraints.get(cname)
+            if c is None or not hasattr(c, "slip_velocity"):
+                raise RigidkinError(f"slip({cname}): there is no contact named '{cname}'.")
+            repl[f] = setup.scalar(c.slip_velocity(setup.kin))
+    expr = expr.xreplace(repl)
+    return setup.scalar(expr) if setup is not None else expr
+
+
+def _direction(solution, integral, values) -> tuple[int, str]:
+    q = integral.coordinate
+    q0, u0 = integral.start
+    u0n = _num(u0, values)
+    if abs(u0n) > 1e-12:
+        return (1 if u0n > 0 else -1), ""
+    acc = single_regime(solution).accelerations[q].xreplace({q.diff(t): 0, q: q0})
+    a0 = _num(acc, values)
+    if abs(a0) > 1e-12:
+        return (1 if a0 > 0 else -1), ""
+    return 1, (f"the start is an equilibrium; an infinitesimal push in the positive sense of "
+               f"{q.func.__name__} is assumed")
+
+
+#: Seconds sympy may spend looking for a closed-form root before the numerical fallback.
+SOLVE_SECONDS = 8.0
+
+
+def _roots(expr, qs: sp.Symbol) -> list | None:
+    """Closed-form real roots of expr(qs) = 0, or None when sympy finds none (in time) it can return."""
+    if algebra.is_transcendental_in(expr, qs):
+        return None
+    try:
+        with algebra.time_limit(SOLVE_SECONDS):
+            sol = sp.solve(expr, qs)
+    except (NotImplementedError, ValueError, TypeError, TimeoutError):
+        return None
+    return list(sol)
+
+
+def _plain(expr, q):
+    qs = sp.Symbol(q.func.__name__, real=True)
+    return sp.sympify(expr).xreplace({q: qs}), qs
+
+
+def _first_turning_point(integral, values, direction, q0n) -> float | None:
+    """The first root of q̇²(q) beyond the start in the direction of motion (numerically)."""
+    f_expr, qs = _plain(integral.rate_squared, integral.coordinate)
+    f = sp.lambdify(qs, f_expr.xreplace({k: sp.Float(v) for k, v in values.items()}), "math")
+    step, span = 1e-3, 50.0
+    x_prev, f_prev = q0n + direction * 1e-9, None
+    try:
+        f_prev = f(x_prev)
+    except (ValueError, ZeroDivisionError):
+        return None
+    x = x_prev
+    while abs(x - q0n) < span:
+        x = x + direction * step
+        try:
+            fx = f(x)
+        except (ValueError, ZeroDivisionError):
+            return x
+        if isinstance(fx, complex) or fx < 0:
+            return brentq(lambda s: f(s), x_prev, x, xtol=1e-14) if f_prev > 0 else x_prev
+        x_prev, f_prev = x, fx
+        step = min(step * 1.2, 0.05)
+    return None
+
+
+def event(solution, when, start: dict | None = None, name: str = "event") -> Event:
+    """The first configuration after ``start`` where ``when`` holds, along a conservative 1-DOF motion."""
+    integral = energy_integral(solution, start)
+    q = integral.coordinate
+    q0, u0 = integral.start
+    g = condition_expression(solution, when)
+    is_rate_event = bool(g.has(q.diff(t)) and not sp.sympify(g.xreplace({q.diff(t): 0})).has(q))
+    if is_rate_event:
+        g_q = integral.rate_squared
+    else:
+        g_q = along_motion(solution, g, integral)
+    values = numeric_values(solution)
+    extra = {s: DEFAULT_PROBE for s in (sp.sympify(q0).free_symbols | sp.sympify(u0).free_symbols)
+             if s not in values}
+    values.update(extra)
+    notes = []
+    direction, note = _direction(solution, integral, values)
+    if note:
+        notes.append(note)
+    if extra:
+        notes.append("roots chosen for " + ", ".join(f"{s} = {v}" for s, v in extra.items()))
+    q0n = _num(q0, values)
+    turn = _first_turning_point(integral, values, direction, q0n)
+    expr, qs = _plain(g_q, q)
+    candidates = _roots(algebra.readable(expr), qs)
+    if candidates:
+        # trigonometric equations: sympy returns principal roots; add their periodic images and mirrors,
+        # and keep only those that satisfy the equation
+        fnum = expr.xreplace({k: sp.Float(v) for k, v in values.items()})
+        extra_c = []
+        for c in candidates:
+            for k in (-2, -1, 1, 2, 0):
+                for cand in (c + 2 * k * sp.pi, -c + 2 * k * sp.pi):
+                    if cand == c:
+                        continue
+                    try:
+                        val = abs(complex(fnum.xreplace({qs: sp.Float(_num(cand, values))}).evalf()))
+                    except (TypeError, ValueError):
+                        continue
+                    if val < 1e-9:
+                        extra_c.append(cand)
+        candidates = candidates + extra_c
+    chosen, exact = None, True
+    if candidates:
+        best = None
+        for c in candidates:
+            v = _num(c, values)
+            if math.isnan(v) or (v - q0n) * direction <= 1e-9:
+                continue
+            if turn is not None and (v - turn) * direction > 1e-9 and not is_rate_event:
+                continue
+            if best is None or abs(v - q0n) < abs(best[1] - q0n):
+                best = (c, v)
+        if best is not None:
+            chosen = (algebra.readable(best[0]), best[1])
+    if chosen is None and not candidates:
+        # numeric bracketing between the start and the turning point (or a long span)
+        f = sp.lambdify(qs, expr.xreplace({k: sp.Float(v) for k, v in values.items()}), "math")
+        end = turn if turn is not None else q0n + direction * 4 * math.pi
+        xs = np.linspace(q0n + direction * 1e-7, end, 2001)
+        vals = []
+        for x in xs:
+            try:
+                vals.append(float(f(x)))
+            except (ValueError, TypeError, ZeroDivisionError):
+                vals.append(float("nan"))
+        for i in range(len(xs) - 1):
+            if np.isfinite(vals[i]) and np.isfinite(vals[i + 1]) and vals[i] * vals[i + 1] <= 0:
+                root = brentq(f, xs[i], xs[i + 1], xtol=1e-13, rtol=1e-13)
+                chosen, exact = (sp.Float(root), root), False
+                break
+    if chosen is None:
+        why = "the condition is never met before the motion turns back" if turn is not None else \
+            "the condition is never met along the motion"
+        if turn is not None:
+            why += f" (turning point at {text(q)} ≈ {turn:.6g})"
+        return Event(name, g, False, q, notes=tuple(notes + [why]))
+    value, vnum = chosen
+    # is every unilateral contact still pushing on the way?
+    regime = single_regime(solution)
+    for cond in regime.validity:
+        h = along_motion(solution, cond.expr, integral)
+        hp, hs = _plain(h, q)
+        hf = sp.lambdify(hs, hp.xreplace({k: sp.Float(v) for k, v in values.items()}), "math")
+        for x in np.linspace(q0n, vnum, 400)[1:-1]:
+            try:
+                hv = float(hf(x))
+            except (ValueError, TypeError, ZeroDivisionError):
+                continue
+            if hv < -1e-9 * max(1.0, abs(hv)):
+                notes.append(f"{cond.label} fails first, near {text(q)} ≈ {x:.6g}: the event is not reached "
+                             "in this mode")
+                return Event(name, g, False, q, notes=tuple(notes))
+    rate = sp.sqrt(integral.rate_squared.xreplace({q: value}))
+    rate = algebra.readable(direction * rate)
+    config = {q: value}
+    for qd, rel in solution.relations.items():
+        config[qd] = algebra.readable(rel.xreplace({q: value}))
+    return Event(name, g, True, q, value, rate, config, exact, None if exact else 1e-12, tuple(notes))
+
+
+def extreme(solution, coordinate=None, start: dict | None = None) -> Event:
+    """The largest excursion of the coordinate after ``start``: where q̇ first vanishes."""
+    integral = energy_integral(solution, start)
+    q = integral.coordinate
+    if coordinate is not None and coordinate != q:
+        raise RigidkinError(f"{coordinate} is not the independent coordinate {q} of this solution.")
+    return event(solution, sp.Eq(q.diff(t), 0), start, name=f"extreme of {q.func.__name__}")
+
+
+def threshold(solution, holds: sp.Rel, start: dict | None = None, over: tuple | None = None,
+              vary=None) -> dict:
+    """The smallest start rate for which ``holds`` (e.g. N ≥ 0) is true along the whole motion.
+
+    ``over`` is the range (a, b) of the coordinate the motion must cover (default: a full turn from the
+    start).  Returns {"rate": the threshold start rate (exact), "rate_squared": its square,
+    "critical": the configuration where the condition is tightest}.
+    """
+    (q,) = solution.coordinates
+    u0 = sp.Symbol("_u0", positive=True)
+    st = dict(start or {})
+    st[q.diff(t)] = u0
+    integral = energy_integral(solution, st)
+    h = holds.lhs - holds.rhs if isinstance(holds, sp.Rel) else sp.sympify(holds)
+    sense = 1 if not isinstance(holds, sp.Rel) or holds.rel_op in (">=", ">") else -1
+    h = sense * along_motion(solution, condition_expression(solution, h), integral)
+    hp, qs = _plain(h, q)
+    q0 = integral.start[0]
+    a, b = over if over is not None else (q0, q0 + 2 * sp.pi)
+    crit = _roots(sp.diff(hp, qs), qs) or []
+    pts = [sp.sympify(a), sp.sympify(b)] + [c for c in crit if not c.has(u0)]
+    values = numeric_values(solution, {u0: 10.0})
+    an, bn = _num(a, values), _num(b, values)
+    inside = [p for p in pts if an - 1e-12 <= _num(p, values) <= bn + 1e-12]
+    worst = min(inside, key=lambda p: _num(hp.xreplace({qs: p}), values))
+    h_at = algebra.readable(hp.xreplace({qs: worst}))
+    sols = [s for s in sp.solve(h_at, u0) if _num(s, values) > 0]
+    if not sols:
+        raise RigidkinError("no start rate makes the condition hold at its tightest point.")
+    rate = algebra.readable(sp.sqrt(algebra.readable(sols[0] ** 2)))
+    return {"rate": rate, "rate_squared": algebra.readable(rate**2), "critical": worst}

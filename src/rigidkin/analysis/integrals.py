@@ -1,0 +1,105 @@
+"""First integrals: the energy integral of a conservative one-degree-of-freedom motion.
+
+For one independent coordinate q the reaction-free equation of motion has the form
+M(q) q̈ + ½ M′(q) q̇² = Q(q) exactly when the system is conservative (no damping, no sliding friction,
+no moving surfaces): then d/dt(½ M q̇²) = Q(q) q̇ and
+
+    ½ M(q) q̇² − ½ M(q0) q̇0² = ∫_{q0}^{q} Q(s) ds,
+
+which gives q̇² as a function of q.  The generalised mass M and force Q come from the solution's mass
+matrix and forcing; the check that the q̇-dependent part of the forcing is −½ M′ q̇² is what decides
+that the integral exists (a non-conservative system gets a clear error, not a wrong integral).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from .. import algebra
+from ..errors import RigidkinError
+
+t = dynamicsymbols._t
+
+
+@dataclass(frozen=True)
+class EnergyIntegral:
+    """q̇² = ``rate_squared`` (a function of q) along the motion that starts at (q0, q̇0)."""
+
+    coordinate: sp.Expr
+    rate_squared: sp.Expr
+    mass: sp.Expr            # generalised mass M(q)
+    force: sp.Expr           # generalised force Q(q)
+    start: tuple             # (q0, q̇0)
+
+    @property
+    def equation(self) -> tuple:
+        return (self.coordinate.diff(t) ** 2, self.rate_squared)
+
+
+def single_regime(solution):
+    if len(solution.regimes) != 1:
+        raise RigidkinError(f"this needs a single regime, but the solution has {len(solution.regimes)}.",
+                            hint="Fix the friction direction (choose a regime) first.")
+    return solution.regimes[0]
+
+
+def start_values(solution, start: dict | None) -> tuple:
+    """(q0, q̇0) of the single independent coordinate, from ``start`` or the declared initial state."""
+    (q,) = solution.coordinates
+    start = dict(start or {})
+    info = solution.system.coordinate_of(q)
+    q0 = start.get(q, info.initial if info.initial is not None else 0)
+    u0 = start.get(q.diff(t), info.rate if info.rate is not None else 0)
+    return sp.nsimplify(q0) if isinstance(q0, float) else sp.sympify(q0), \
+        sp.nsimplify(u0) if isinstance(u0, float) else sp.sympify(u0)
+
+
+def energy_integral(solution, start: dict | None = None) -> EnergyIntegral:
+    """The energy integral q̇²(q) of a conservative 1-DOF solution, from ``start`` (default: initial state)."""
+    if len(solution.coordinates) != 1:
+        raise RigidkinError(f"the closed-form energy integral here is for one degree of freedom; this solution "
+                            f"has {len(solution.coordinates)}.", hint="Use the energy law (T + U) instead.")
+    regime = single_regime(solution)
+    (q,) = solution.coordinates
+    u = q.diff(t)
+    M = sp.simplify(regime.mass_matrix[0, 0])
+    f = regime.forcing[0]
+    Q = f.xreplace({u: 0})
+    gyro = sp.expand(f - Q)
+    s = sp.Dummy("s")
+    expected = -sp.diff(M.xreplace({q: s}), s).xreplace({s: q}) * u**2 / 2
+    if f.has(t) and algebra.plain_state(f)[0].has(t):
+        raise RigidkinError("the forcing depends explicitly on time, so energy is not conserved.",
+                            hint="Moving surfaces and time-varying loads do work.")
+    if not algebra.is_zero(gyro - expected):
+        raise RigidkinError("the system is not conservative (its rate-dependent forces are not those of a "
+                            "kinetic energy ½M(q)q̇²: damping or sliding friction does work), so there is "
+                            "no energy integral.", hint="Simulate it instead.")
+    q0, u0 = start_values(solution, start)
+    work = sp.integrate(Q.xreplace({q: s}), (s, q0, q))
+    rate_sq = (M.xreplace({q: q0}) * u0**2 + 2 * work) / M
+    rate_sq = algebra.readable(sp.simplify(rate_sq))
+    return EnergyIntegral(q, rate_sq, M, Q, (q0, u0))
+
+
+def along_motion(solution, expr, integral: EnergyIntegral) -> sp.Expr:
+    """``expr`` (of q, q̇, q̈) along the motion: q̈ from the EOM, q̇² from the integral."""
+    (q,) = solution.coordinates
+    u = q.diff(t)
+    regime = single_regime(solution)
+    e = sp.sympify(expr).xreplace({q.diff(t, 2): regime.accelerations[q]})
+    e = sp.expand(e)
+    plain, _ = algebra.plain_state(e)
+    e = e.xreplace({u: sp.Symbol("_u")})
+    us = sp.Symbol("_u")
+    if e.has(us):
+        poly = sp.Poly(e, us) if e.is_polynomial(us) else None
+        if poly is None or any(k[0] % 2 for k in poly.monoms() if poly.coeff_monomial(k) != 0):
+            # odd powers: q̇ = ±sqrt(q̇²); the sign is the direction of motion
+            raise RigidkinError("the expression depends on the sign of the rate, not only on its square.",
+                                hint="Give the direction of motion.")
+        e = e.xreplace({us: sp.sqrt(integral.rate_squared)})
+    return algebra.readable(sp.simplify(e))
