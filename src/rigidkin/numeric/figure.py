@@ -1,0 +1,86 @@
+"""A figure of a simulation: coordinates, rates, reactions and energy against time, events marked.
+
+Each mode is a shaded band named in a legend; each event a dotted vertical line numbered at the top
+and listed under the plots.  matplotlib's Agg backend draws it, so no display is needed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+_UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s"), "other": ("", "1/s")}
+
+
+def _label(name: str, unit: str) -> str:
+    return f"{name} [{unit}]" if unit else name
+
+
+def plot_result(result, path=None, title: str | None = None):
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(10, 11), layout="constrained")
+    axes = fig.subplots(4, 1, sharex=True)
+    t = result.t
+    names = result.layout.names
+    seg_idx = result.segment
+
+    def lines(ax, series, ylabel):
+        cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        for j, (lab, arr) in enumerate(series):
+            color = cycle[j % len(cycle)]
+            for s in np.unique(seg_idx):           # one line per segment: no line across a jump
+                m = seg_idx == s
+                ax.plot(t[m], arr[m], color=color, lw=1.4, label=lab if s == seg_idx[0] else None)
+        ax.set_ylabel(ylabel)
+        if series:
+            ax.legend(loc="upper left", fontsize=8, framealpha=0.85)
+        ax.grid(True, alpha=0.3)
+
+    q = result.q
+    r = result.rates
+    kinds = result.kinds
+    lines(axes[0], [(_label(n, _UNITS.get(kinds.get(n, "other"), ("", ""))[0]), q[n]) for n in names],
+          "coordinates")
+    lines(axes[1], [(_label(f"d{n}/dt", _UNITS.get(kinds.get(n, "other"), ("", ""))[1]), r[f"dot({n})"])
+                    for n in names], "rates")
+    lines(axes[2], [(k, v) for k, v in result.reactions.items()], "reactions [N, N·m]")
+    E0 = result.energy["E"][0]
+    lines(axes[3], [("T kinetic", result.energy["T"]), ("U potential", result.energy["U"]),
+                    ("E = T + U", result.energy["E"])]
+          + ([("E0 + W (work of non-conservative loads)", E0 + result.energy["W"])]
+             if np.any(result.energy["W"] != 0) else []), "energy [J]")
+    axes[3].set_xlabel("t [s]")
+    if not result.reactions:
+        axes[2].text(0.5, 0.5, "no reactions", transform=axes[2].transAxes, ha="center", va="center")
+    # modes as shaded bands
+    shades = ["#f2f2f2", "#dde8f5", "#f7e6d5", "#e2f0dc", "#efe0f0", "#f5f1d0"]
+    desc = []
+    for s in result.segments:
+        if s.description not in desc:
+            desc.append(s.description)
+    for s in result.segments:
+        c = shades[desc.index(s.description) % len(shades)]
+        for ax in axes:
+            ax.axvspan(s.t0, s.t1, color=c, zorder=0, lw=0)
+    # events
+    for i, e in enumerate(result.events, 1):
+        for ax in axes:
+            ax.axvline(e.t, color="0.25", ls=":", lw=1.0)
+        axes[0].annotate(str(i), (e.t, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 3),
+                         textcoords="offset points", ha="center", va="bottom", fontsize=9, color="0.15")
+    head = title or f"{result.title} — simulated to t = {result.t_final:.4g} s"
+    fig.suptitle(head, fontsize=12)
+    notes = [f"[{i}] t = {e.t:.6g} s: {e.name}" for i, e in enumerate(result.events, 1)]
+    modes = [f"mode {j + 1} (band {['grey', 'blue', 'orange', 'green', 'violet', 'yellow'][j % 6]}): {d}"
+             for j, d in enumerate(desc)]
+    foot = modes + notes[:12] + ([f"… and {len(notes) - 12} more events"] if len(notes) > 12 else [])
+    foot.append(f"energy drift {result.energy_drift:.2g} (relative, {result.energy_balance}); "
+                f"largest constraint residual {result.max_residual:.2g}; {result.status}: {result.message}")
+    fig.text(0.01, 0.0, "\n".join(foot), fontsize=8, va="top", ha="left", family="monospace", wrap=True)
+    if path is not None:
+        fig.savefig(path, dpi=110, bbox_inches="tight")
+    return fig

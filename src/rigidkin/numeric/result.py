@@ -1,0 +1,254 @@
+"""The result of a simulation: time histories, events, modes, and the energy and constraint monitors.
+
+Histories are sampled from each mode's dense output on a uniform grid plus the ends of every
+segment (so a jump in the rates at an impact shows as two samples at the same time).  The energy
+monitor compares E = T + U with its initial value plus the work W done by non-conservative loads
+and reactions (integrated with the motion) and by impulses: E − E0 − W is the drift of the
+integration, whether or not energy is conserved.  The constraint monitor reports the largest gap
+of every closed constraint (position level).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .rhs import SimulationError
+from .state import StateLayout, rate_name
+
+
+@dataclass(frozen=True)
+class Event:
+    """Something that ended a mode: its name, time, the state before and after, and the modes."""
+
+    name: str
+    kind: str                # "opens", "impact", "sticks", "slips", "reverses", "phase", "stop"
+    contact: str
+    t: float
+    state: dict              # the state at the event (before any jump)
+    after: dict              # the state the next mode starts from
+    mode_before: str
+    mode_after: str
+    detail: str = ""
+
+    def to_dict(self) -> dict:
+        d = {"name": self.name, "t": self.t, "state": dict(self.state), "kind": self.kind,
+             "mode_before": self.mode_before, "mode_after": self.mode_after}
+        if any(abs(self.after[k] - self.state[k]) > 0 for k in self.state):
+            d["state_after"] = dict(self.after)
+        if self.detail:
+            d["detail"] = self.detail
+        return d
+
+    def __str__(self) -> str:
+        return f"t = {self.t:.10g}: {self.name}" + (f" ({self.detail})" if self.detail else "")
+
+
+@dataclass
+class Segment:
+    """A stretch of the motion in one regime of one mode."""
+
+    t0: float
+    t1: float
+    mode: dict
+    regime: int
+    description: str
+    phase: int
+    dense: object = field(repr=False)
+    model: object = field(repr=False)
+    params: np.ndarray = field(repr=False)
+    rhs_calls: int = 0
+
+    def state(self, t_) -> np.ndarray:
+        return np.asarray(self.dense(t_), dtype=float)
+
+
+@dataclass
+class SimulationResult:
+    """Time histories (``t``, ``q``, ``rates``, ``reactions``, ``energy``), ``events``, ``segments`` and monitors."""
+
+    system: str
+    title: str
+    layout: StateLayout
+    t: np.ndarray
+    y: np.ndarray                      # (samples, 2n): q then q̇
+    segment: np.ndarray                # segment index of each sample
+    reactions: dict                    # name → array (0 where the constraint is open)
+    energy: dict                       # "T", "U", "E", "W" (work of non-conservative loads and impulses)
+    residuals: dict                    # constraint row → largest |gap| while closed
+    events: list
+    segments: list
+    status: str                        # "completed" or "stopped"
+    message: str
+    energy_drift: float                # max |E − E0 − W| / energy scale
+    energy_balance: str                # "conserved" or "with the work of non-conservative loads"
+    warnings: list = field(default_factory=list)
+    kinds: dict = field(default_factory=dict)
+
+    # access ------------------------------------------------------------------------------------
+    @property
+    def q(self) -> dict:
+        return {n: self.y[:, i] for i, n in enumerate(self.layout.names)}
+
+    @property
+    def rates(self) -> dict:
+        n = self.layout.n
+        return {rate_name(nm): self.y[:, n + i] for i, nm in enumerate(self.layout.names)}
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        """A history by name: ``theta``, ``dot(theta)``, a reaction, ``T``, ``U``, ``E``, ``W``."""
+        if name in self.reactions:
+            return self.reactions[name]
+        if name in self.energy:
+            return self.energy[name]
+        return self.y[:, self.layout.index(name)]
+
+    @property
+    def final_state(self) -> dict:
+        return self.layout.as_dict(self.y[-1])
+
+    @property
+    def t_final(self) -> float:
+        return float(self.t[-1])
+
+    @property
+    def max_residual(self) -> float:
+        return max(self.residuals.values(), default=0.0)
+
+    def at(self, t_: float) -> dict:
+        """The state at time ``t_`` from the dense output (after any event at exactly that time)."""
+        seg = self.segment_at(t_)
+        return self.layout.as_dict(seg.state(t_))
+
+    def segment_at(self, t_: float) -> Segment:
+        if not self.segments[0].t0 <= t_ <= self.segments[-1].t1:
+            raise ValueError(f"t = {t_} is outside the simulated interval "
+                             f"[{self.segments[0].t0}, {self.segments[-1].t1}].")
+        for seg in reversed(self.segments):
+            if seg.t0 <= t_:
+                return seg
+        return self.segments[0]
+
+    def events_of(self, kind: str) -> list:
+        return [e for e in self.events if e.kind == kind]
+
+    # output --------------------------------------------------------------------------------------
+    def to_dict(self) -> dict:
+        """``{"events": [...], "final_state", "energy_drift", ...}`` (what ``--json`` prints)."""
+        return {"system": self.system, "status": self.status, "message": self.message,
+                "t_final": self.t_final, "events": [e.to_dict() for e in self.events],
+                "final_state": self.final_state, "energy_drift": self.energy_drift,
+                "energy_balance": self.energy_balance, "max_constraint_residual": self.max_residual,
+                "modes": [{"t0": s.t0, "t1": s.t1, "mode": s.description} for s in self.segments],
+                "warnings": list(self.warnings)}
+
+    def to_json(self, indent: int | None = 2) -> str:
+        return json.dumps(self.to_dict(), indent=indent, allow_nan=False)
+
+    def columns(self) -> dict:
+        cols = {"t": self.t}
+        cols.update(self.q)
+        cols.update(self.rates)
+        cols.update(self.reactions)
+        cols.update(self.energy)
+        return cols
+
+    def to_csv(self, path=None) -> str:
+        """The histories as CSV (t, mode, coordinates, rates, reactions, T, U, E, W); written to ``path`` if given."""
+        cols = self.columns()
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        names = list(cols)
+        w.writerow([names[0], "mode", *names[1:]])
+        for j in range(len(self.t)):
+            w.writerow([repr(float(cols["t"][j])), self.segments[int(self.segment[j])].description,
+                        *(repr(float(cols[k][j])) for k in names[1:])])
+        text = buf.getvalue()
+        if path is not None:
+            with open(path, "w", encoding="utf-8", newline="") as f:
+                f.write(text)
+        return text
+
+    def plot(self, path=None, title: str | None = None):
+        """A figure of coordinates, rates, reactions and energy with the events marked; saved to ``path``."""
+        from .figure import plot_result
+
+        return plot_result(self, path, title)
+
+    def __str__(self) -> str:
+        lines = [f"{self.title}: simulated to t = {self.t_final:.6g} ({self.status}: {self.message})"]
+        for s in self.segments:
+            lines.append(f"  {s.t0:12.6g} – {s.t1:<12.6g} {s.description}")
+        if self.events:
+            lines.append("Events:")
+            lines += [f"  {e}" for e in self.events]
+        lines.append(f"Energy drift {self.energy_drift:.3g} (relative; {self.energy_balance}); "
+                     f"largest constraint residual {self.max_residual:.3g}")
+        lines += [f"Warning: {w}" for w in self.warnings]
+        return "\n".join(lines)
+
+
+def build_result(system, layout: StateLayout, segments: list, events: list, status: str, message: str,
+                 n_points: int = 1001, energy_tol: float = 1e-6, residual_tol: float = 1e-6,
+                 notes: list | None = None) -> SimulationResult:
+    """Sample every segment and assemble the histories and monitors."""
+    n = layout.n
+    t_start, t_end = segments[0].t0, segments[-1].t1
+    grid = np.linspace(t_start, t_end, max(2, int(n_points)))
+    ts, ys, segs, react_parts, res_parts, T_parts, U_parts = [], [], [], [], [], [], []
+    for i, seg in enumerate(segments):
+        last = i == len(segments) - 1
+        inside = grid[(grid > seg.t0) & ((grid < seg.t1) | (last & (grid <= seg.t1)))]
+        times = np.unique(np.concatenate([[seg.t0], inside, [seg.t1]]))
+        Y = np.asarray(seg.dense(times), dtype=float).reshape(2 * n + 1, len(times))
+        vals = seg.model.evaluate(times, Y, seg.params)
+        ts.append(times)
+        ys.append(Y)
+        segs.append(np.full(len(times), i))
+        forces = dict(vals["reactions"])
+        forces.update(vals["frictions"])
+        react_parts.append(forces)
+        res_parts.append(vals["residuals"])
+        T_parts.append(vals["T"])
+        U_parts.append(vals["U"])
+    t = np.concatenate(ts)
+    Y = np.concatenate(ys, axis=1)
+    names: list[str] = []
+    for part in react_parts:
+        names += [k for k in part if k not in names]
+    reactions = {k: np.concatenate([part.get(k, np.zeros(len(tt))) for part, tt in zip(react_parts, ts)])
+                 for k in names}
+    residuals: dict = {}
+    for part in res_parts:
+        for k, v in part.items():
+            residuals[k] = max(residuals.get(k, 0.0), float(np.max(np.abs(v))) if len(v) else 0.0)
+    T, U = np.concatenate(T_parts), np.concatenate(U_parts)
+    W = Y[2 * n]
+    E = T + U
+    for label, arr in [("state", Y), ("reactions", np.array(list(reactions.values()) or [[0.0]])), ("energy", E)]:
+        if not np.all(np.isfinite(arr)):
+            bad = np.nonzero(~np.all(np.isfinite(np.atleast_2d(arr)), axis=0))[0]
+            j = int(bad[0]) if len(bad) else 0
+            raise SimulationError(f"the {label} is not finite at t = {t[min(j, len(t) - 1)]:.10g}.",
+                                  where=system.name, hint="The motion reached a singular configuration.")
+    scale = max(abs(E[0]), float(np.max(np.abs(T))), float(np.max(np.abs(U - U[0]))), 1e-300)
+    drift = float(np.max(np.abs(E - E[0] - W)) / scale)
+    conserved = bool(np.all(W == 0.0)) and all(s.model.conservative for s in segments)
+    balance = "conserved" if conserved else "with the work of non-conservative loads and impulses"
+    warns = list(notes or [])
+    if drift > energy_tol:
+        warns.append(f"the energy drift {drift:.3g} (relative, {balance}) exceeds {energy_tol:g}: the "
+                     "integration is not accurate enough (tighten rtol/atol) or the model does work the "
+                     "monitor does not see.")
+    qscale = max(1.0, float(np.max(np.abs(Y[:n]))) if n else 1.0)
+    for k, v in residuals.items():
+        if v > residual_tol * qscale:
+            warns.append(f"the constraint '{k}' drifts by {v:.3g} while closed (tolerance {residual_tol:g}).")
+    return SimulationResult(system.name, system.title, layout, t, Y[:2 * n].T.copy(), np.concatenate(segs),
+                            reactions, {"T": T, "U": U, "E": E, "W": W}, residuals, list(events),
+                            list(segments), status, message, drift, balance, warns,
+                            {c.name: c.kind for c in system.coordinate_info.values()})

@@ -1,0 +1,413 @@
+"""Simulation through contact and friction modes, switching exactly where a mode ends.
+
+``simulate`` integrates every coordinate and rate with scipy's ``solve_ivp`` (DOP853, tight
+tolerances, dense output) in one regime of one mode at a time.  The quantities whose zero ends the
+regime (``modes.Watch``) are solve_ivp events, located by brentq on the dense output to machine
+precision in time.  At an event the next mode is chosen from the same model: a contact opens (the
+state carries over, the degrees of freedom increase), an impact resolves by impulse–momentum
+(``impact``), slipping turns into rolling if the friction needed is within µN, sticking turns into
+slipping in the direction the friction saturates.  A mode the model cannot represent (a contact
+that would open without a coordinate to open with) stops the simulation with the reason.
+
+Phases change parameter values on the way (a frictionless stretch, then a rough one):
+``phases=[Phase({"mu": 0}, until=x - d), Phase()]``.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+from scipy.integrate import solve_ivp
+from sympy.physics.vector import dynamicsymbols
+
+from ..errors import InputError
+from ..model.constraints import ROLLING, SMOOTH, Coulomb
+from .impact import impact
+from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
+from .result import Event, Segment, SimulationResult, build_result
+from .rhs import RHS, SimulationError, compile_functions
+from .state import StateLayout, initial_values, parameter_vector
+
+t = dynamicsymbols._t
+
+METHODS = ("DOP853", "Radau", "RK45", "BDF", "LSODA")
+
+
+@dataclass(frozen=True)
+class Phase:
+    """A stretch of the motion with its own parameter values, ending when ``until`` reaches zero.
+
+    ``params`` override the simulation's parameters (name → number or string with unit);
+    ``until`` is a sympy expression of the coordinates, rates, time and parameters (the phase ends
+    when it crosses zero), ``duration`` a length of time; the last phase runs to the end.
+    """
+
+    params: Mapping = field(default_factory=dict)
+    until: sp.Expr | None = None
+    duration: float | None = None
+    name: str = ""
+
+
+def hybrid_of(system) -> Hybrid:
+    """The system's Hybrid (numeric functions of its modes), kept with the system's derivations."""
+    h = system._cache.get("numeric-hybrid")
+    if h is None:
+        h = Hybrid(system)
+        system._cache["numeric-hybrid"] = h
+    return h
+
+
+def _span(t_span) -> tuple[float, float]:
+    if isinstance(t_span, (int, float)):
+        t_span = (0.0, float(t_span))
+    try:
+        t0, t1 = (float(v) for v in t_span)
+    except (TypeError, ValueError):
+        raise InputError(f"t_span must be an end time or (start, end), not {t_span!r}.", where="simulate") from None
+    if not (np.isfinite(t0) and np.isfinite(t1)) or t1 <= t0:
+        raise InputError(f"the time span ({t0}, {t1}) is empty or not finite.", where="simulate",
+                         hint="Give an end time after the start, e.g. --t-end 3.")
+    return t0, t1
+
+
+def _restitution(system, restitution) -> dict:
+    hyb_contacts = [n for n, c in system.constraints.items() if getattr(c, "kind", "") == "contact"]
+    if isinstance(restitution, Mapping):
+        bad = [n for n in restitution if n not in hyb_contacts]
+        if bad:
+            raise InputError(f"{', '.join(bad)} is not a contact of {system.name}.", where="restitution",
+                             hint=f"Contacts: {', '.join(hyb_contacts) or 'none'}.")
+        out = {n: 0.0 for n in hyb_contacts}
+        out.update({n: float(v) for n, v in restitution.items()})
+    else:
+        out = {n: float(restitution) for n in hyb_contacts}
+    for n, e in out.items():
+        if not 0.0 <= e <= 1.0:
+            raise InputError(f"the coefficient of restitution of {n} is {e}; it must lie in [0, 1].",
+                             where="restitution")
+    return out
+
+
+def initial_conditions(system, initial: Mapping | None = None, params=None, mode: Mapping | None = None,
+                  t0: float = 0.0) -> tuple[np.ndarray, dict, int]:
+    """The full initial state (q, q̇) and a consistent (mode, regime) at it.
+
+    Coordinates and rates given in ``initial`` win; then the declared ``initial``/``rate`` of each
+    coordinate; the dependent ones follow from the constraints of the mode (their integrated
+    relations and rate relations), the rest are zero.  A contact whose gap or normal speed the
+    given values make positive starts open; one they make negative is an error.
+    """
+    hyb = hybrid_of(system)
+    lay = hyb.layout
+    p = parameter_vector(system, lay, params)
+    explicit, declared = initial_values(system, lay, initial)
+    cand = hyb.default_mode()
+    for name, st in (mode or {}).items():
+        if name not in hyb.contacts:
+            raise InputError(f"'{name}' is not a contact of {system.name}.", where="mode",
+                             hint=f"Contacts: {', '.join(hyb.contacts) or 'none'}.")
+        if st not in (OPEN, SLIP, STICK):
+            raise InputError(f"contact state '{st}' is not open, slip or stick.", where=f"mode of {name}")
+        cand[name] = st
+    n = lay.n
+    for _ in range(len(hyb.contacts) + 1):
+        y = np.zeros(2 * n)
+        for i, v in {**declared, **explicit}.items():
+            y[i] = v
+        sol = hyb.solution(cand)
+        rel_slots, rel_fn, rate_slots, rate_fn = hyb.relation_functions(cand)
+        # dependent coordinates from the integrated relations (their arguments are independent)
+        if rel_slots:
+            vals = rel_fn(t0, *y, *p)
+            for s, v in zip(rel_slots, vals):
+                if s not in explicit:
+                    y[s] = float(v)
+        if rate_slots:
+            vals = rate_fn(t0, *y, *p)
+            for s, v in zip(rate_slots, vals):
+                if n + s not in explicit:
+                    y[n + s] = float(v)
+        # closed contacts the given values separate
+        opened = []
+        scale = max(1.0, float(np.max(np.abs(y))))
+        for name, c in hyb.contacts.items():
+            if cand[name] == OPEN:
+                continue
+            gap, vn, _ = hyb.contact_state(name, t0, y, p)
+            if gap < -1e-9 * scale:
+                raise InputError(f"the initial state puts contact {name} {-gap:.6g} into its surface.",
+                                 where=f"initial state of {system.name}",
+                                 hint="Give coordinates that keep the bodies outside the surfaces they touch.")
+            if c.unilateral and (gap > 1e-9 * scale or vn > 1e-9 * scale):
+                opened.append(name)
+        if opened:
+            for name in opened:
+                cand[name] = OPEN
+            continue
+        bad = []
+        for s in rate_slots:
+            if n + s in explicit:
+                want = float(rate_fn(t0, *y, *p)[rate_slots.index(s)])
+                if abs(explicit[n + s] - want) > 1e-9 * max(1.0, abs(want)):
+                    bad.append(f"{lay.labels[n + s]} = {explicit[n + s]:g} (the constraints give {want:.6g})")
+        for s in rel_slots:
+            if s in explicit:
+                want = float(rel_fn(t0, *y, *p)[rel_slots.index(s)])
+                if abs(explicit[s] - want) > 1e-9 * max(1.0, abs(want)) and hyb._depends_on(cand, lay.coordinates[s]):
+                    bad.append(f"{lay.names[s]} = {explicit[s]:g} (the constraints give {want:.6g})")
+        if bad:
+            raise InputError("the initial state violates the constraints of the mode "
+                             f"({describe_mode(system, cand)}): {'; '.join(bad)}.",
+                             where=f"initial state of {system.name}",
+                             hint="Give only the independent coordinates and rates, or values that satisfy "
+                                  "the constraints.")
+        del sol
+        mode_, k, _ = hyb.settle(cand, t0, y, p)
+        return hyb.project_rates(mode_, t0, y, p), mode_, k
+    raise InputError("no set of open and closed contacts fits the initial state.", where=system.name)
+
+
+def simulate(system, t_span, initial_state: Mapping | None = None, params: Mapping | None = None, *,
+             phases: Sequence[Phase] | None = None, mode: Mapping | None = None, restitution=0.0,
+             method: str = "DOP853", rtol: float = 1e-11, atol: float = 1e-13, max_step: float = np.inf,
+             n_points: int = 1001, max_events: int = 1000, rest_speed: float = 1e-7,
+             energy_tol: float = 1e-6, residual_tol: float = 1e-6,
+             progress: Callable[[float, float], None] | None = None) -> SimulationResult:
+    """Simulate ``system`` over ``t_span`` (an end time, or (start, end)) through its contact modes.
+
+    ``initial_state`` maps ``theta`` / ``dot(theta)`` to values (default: the declared initial
+    values; dependent coordinates from the constraints); ``params`` overrides parameter values
+    (numbers are SI, strings carry units: ``{"beta": "30 deg"}``); ``phases`` splits the motion into
+    stretches with their own parameters; ``mode`` fixes the starting state of contacts;
+    ``restitution`` is e for every contact or a dict per contact (0: the contact closes on impact).
+    Returns a :class:`SimulationResult` with time histories, events, energy and constraint monitors.
+    """
+    t0, t1 = _span(t_span)
+    if method not in METHODS:
+        raise InputError(f"unknown integration method '{method}'.", where="simulate", hint=f"Use {', '.join(METHODS)}.")
+    hyb = hybrid_of(system)
+    lay: StateLayout = hyb.layout
+    n = lay.n
+    phases = list(phases or [Phase()])
+    base = dict(params or {})
+    pvecs = [parameter_vector(system, lay, {**base, **dict(ph.params)}) for ph in phases]
+    e_of = _restitution(system, restitution)
+    y_q, mode_, k = initial_conditions(system, initial_state, {**base, **dict(phases[0].params)}, mode, t0)
+    until_fns = [_phase_function(lay, ph) for ph in phases]
+    y = np.concatenate([y_q, [0.0]])      # the last slot: work of non-conservative loads and impulses
+    segments: list[Segment] = []
+    events: list[Event] = []
+    notes: list[str] = []
+    status, message = "completed", f"reached t = {t1:g}"
+    ph, ph_start = 0, t0
+    t_now = t0
+    zero_steps = 0
+    report = (lambda tt: progress(tt, t1)) if progress is not None else None
+    while t_now < t1:
+        p = pvecs[ph]
+        model = hyb.model(mode_, k)
+        mismatch = hyb.relation_mismatch(mode_, t_now, y, p)
+        if mismatch:
+            status = "stopped"
+            message = (f"at t = {t_now:.10g} the mode ({describe_mode(system, mode_)}) was derived with the "
+                       "dependent coordinates integrated from the declared initial configuration, and the state "
+                       "differs from that by " + ", ".join(f"{nm}: {d:.4g}" for nm, d in mismatch)
+                       + "; its equations depend on these coordinates, so the simulation cannot continue exactly.")
+            break
+        rhs = RHS(model.rhs_function, lay, p, 1, label=system.name, progress=report)
+        fns = []
+        for i, w in enumerate(model.watches):
+            fns.append(_event(lambda tt, yy, i=i, p=p, model=model: model.watch_values(tt, yy, p)[i], w.direction))
+        phase_slot = None
+        if ph < len(phases) - 1:
+            g = until_fns[ph]
+            if g is not None:
+                g0 = g(t_now, y, p, ph_start)
+                if g0 == 0.0:
+                    raise InputError(f"phase {ph + 1}'s end condition is already zero where the phase begins "
+                                     f"(t = {t_now:g}).", where="phases")
+                phase_slot = len(fns)
+                fns.append(_event(lambda tt, yy, g=g, p=p, s=ph_start: g(tt, yy, p, s), 0))
+        try:
+            sol = solve_ivp(rhs, (t_now, t1), y, method=method, rtol=rtol, atol=atol, dense_output=True,
+                            events=fns or None, max_step=max_step)
+        except SimulationError:
+            raise
+        except (ValueError, ZeroDivisionError, FloatingPointError) as exc:
+            raise SimulationError(f"the integration failed at t ≈ {t_now:.10g}: {exc}.", where=system.name) from None
+        if sol.status == -1:
+            raise SimulationError(f"the integration failed at t = {sol.t[-1]:.10g} ({sol.message}); state: "
+                                  + _state_text(lay, sol.y[:, -1]) + ".", where=system.name,
+                                  hint="The motion may reach a singular configuration; try method='Radau' or "
+                                       "looser tolerances.")
+        segments.append(Segment(t_now, float(sol.t[-1]), dict(mode_), k, model.description, ph, sol.sol, model,
+                                p, rhs.calls))
+        t_prev, t_now = t_now, float(sol.t[-1])
+        y = np.array(sol.y[:, -1], dtype=float)
+        if sol.status == 0:
+            break
+        fired = [i for i, te in enumerate(sol.t_events) if len(te)]
+        i = min(fired, key=lambda j: abs(sol.t_events[j][-1] - t_now))
+        y = np.array(sol.y_events[i][-1], dtype=float)
+        before = lay.as_dict(y)
+        zero_steps = zero_steps + 1 if t_now - t_prev <= 1e-12 * max(1.0, abs(t_now)) else 0
+        if zero_steps > 25 or len(events) >= max_events:
+            status = "stopped"
+            message = (f"the mode keeps switching at t = {t_now:.10g} (chattering or an accumulation of events)"
+                       if zero_steps > 25 else f"stopped after {max_events} events (max_events)")
+            break
+        if i == phase_slot:
+            p_new = pvecs[ph + 1]
+            E_old = sum(model.energy(t_now, y, p))
+            ph, ph_start = ph + 1, t_now
+            try:
+                mode_, k, nts = hyb.settle(mode_, t_now, y, p_new)
+            except ModeUnavailable as exc:
+                status, message = "stopped", str(exc)
+                events.append(Event(f"phase {ph} ends", "stop", "", t_now, before, before,
+                                    model.description, "", str(exc)))
+                break
+            y[:2 * n] = hyb.project_rates(mode_, t_now, y[:2 * n], p_new)
+            E_new = sum(hyb.model(mode_, k).energy(t_now, y, p_new))
+            y[2 * n] += E_new - E_old
+            name = phases[ph - 1].name or f"phase {ph} ends"
+            events.append(Event(name, "phase", "", t_now, before, lay.as_dict(y), model.description,
+                                hyb.model(mode_, k).description, "; ".join(nts)))
+            continue
+        w = model.watches[i]
+        try:
+            mode_, k, y, ev = _transition(hyb, model, w, t_now, y, p, e_of, rest_speed)
+        except (ModeUnavailable, SimulationError) as exc:
+            status = "stopped"
+            message = f"{w.label} at t = {t_now:.10g}, but {exc.message[0].lower() + exc.message[1:]}"
+            if exc.hint:
+                message += f" {exc.hint}"
+            events.append(Event(w.label, "stop", w.name, t_now, before, before, model.description, "", message))
+            break
+        events.append(ev)
+    if progress is not None:
+        progress(t_now, t1)
+    result = build_result(system, lay, segments, events, status, message, n_points=n_points,
+                          energy_tol=energy_tol, residual_tol=residual_tol, notes=notes)
+    for wmsg in result.warnings:
+        warnings.warn(wmsg, RuntimeWarning, stacklevel=2)
+    return result
+
+
+def _event(fn, direction):
+    fn.terminal = True
+    fn.direction = direction
+    return fn
+
+
+def _state_text(lay, y) -> str:
+    return ", ".join(f"{k} = {v:.6g}" for k, v in lay.as_dict(y).items())
+
+
+def _phase_function(lay: StateLayout, ph: Phase):
+    if ph.until is None and ph.duration is None:
+        return None
+    if ph.until is not None and ph.duration is not None:
+        raise InputError("a phase ends either when 'until' reaches zero or after 'duration', not both.",
+                         where="phases")
+    if ph.duration is not None:
+        d = float(ph.duration)
+        if not d > 0:
+            raise InputError(f"a phase duration must be positive, not {d}.", where="phases")
+        return lambda tt, yy, p, start: tt - start - d
+    if not isinstance(ph.until, sp.Basic):
+        raise InputError(f"a phase's 'until' must be a sympy expression of the state (e.g. x - d), not "
+                         f"{ph.until!r}.", where="phases")
+    f = compile_functions(lay.arguments(), [lay.to_plain(ph.until)])
+    n = lay.n
+    return lambda tt, yy, p, start: float(f(tt, *yy[:2 * n], *p)[0])
+
+
+def _transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
+    """The mode, regime and state after watch ``w`` reached zero at (t_, y); and the Event to record."""
+    lay = hyb.layout
+    n = lay.n
+    mode = dict(model.mode)
+    before = lay.as_dict(y)
+    detail = ""
+    if w.kind == "opens":
+        cand = {**mode, w.name: OPEN}
+        forced = _current_signs(hyb, model, t_, y, p)
+        forced.pop(w.name, None)
+        new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+        detail = f"the normal reaction of {w.name} reaches zero; the contact opens"
+    elif w.kind == "impact":
+        c = hyb.contacts[w.name]
+        out = impact(hyb, mode, w.name, t_, y, p, e_of.get(w.name, 0.0), model.regime_index)
+        y = np.array(y, dtype=float)
+        y[:2 * n] = out.y[:2 * n]
+        y[2 * n] += out.energy_change
+        detail = (f"impact at {w.name}: normal speed {out.approach_speed:.6g} → {out.separation_speed:.6g}, "
+                  + ", ".join(f"impulse {k_} = {v:.6g}" for k_, v in out.impulses.items())
+                  + f", kinetic energy change {out.energy_change:.6g}")
+        if out.separation_speed > rest_speed:
+            new_mode, k = mode, model.regime_index
+            nts = ["the body bounces off"]
+        else:
+            closed = STICK if c.friction == ROLLING else SLIP
+            cand = {**mode, w.name: closed}
+            forced = _current_signs(hyb, model, t_, y, p)
+            new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+    elif w.kind == "sticks":
+        cand = {**mode, w.name: STICK}
+        forced = _current_signs(hyb, model, t_, y, p)
+        forced.pop(w.name, None)
+        try:
+            new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+        except ModeUnavailable:
+            new_mode, k, nts = mode, hyb.regime_at(mode, t_, y, p, forced), []
+        if new_mode.get(w.name) == STICK:
+            detail = f"the slip speed at {w.name} reaches zero and the friction needed is within µN: it sticks"
+        else:
+            detail = f"the slip speed at {w.name} reaches zero but sticking needs more than µN: it slips on"
+    elif w.kind == "slips":
+        if w.slip_sign == 0:
+            raise SimulationError(f"contact {w.name} reaches the friction limit, and slipping in three "
+                                  "dimensions is not simulated yet.", where=hyb.system.name)
+        cand = {**mode, w.name: SLIP}
+        forced = {**_current_signs(hyb, model, t_, y, p), w.name: w.slip_sign}
+        new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+        detail = (f"the friction needed at {w.name} reaches µN; it slips with slip speed "
+                  f"{'positive' if w.slip_sign > 0 else 'negative'}")
+    else:  # "reverses"
+        forced = _current_signs(hyb, model, t_, y, p)
+        forced.pop(w.name, None)
+        k = hyb.regime_at(mode, t_, y, p, forced)
+        new_mode, nts = mode, []
+        detail = f"{w.label}: the friction direction follows the new sign"
+    y = np.array(y, dtype=float)
+    y[:2 * n] = hyb.project_rates(new_mode, t_, y[:2 * n], p)
+    after_model = hyb.model(new_mode, k)
+    if nts:
+        detail = "; ".join([detail, *nts]) if detail else "; ".join(nts)
+    name = w.label
+    if w.kind == "sticks" and new_mode.get(w.name) == STICK:
+        c = hyb.contacts[w.name]
+        name = f"contact {w.name} sticks" + (" (rolling begins)" if c.radius != 0 else "")
+    elif w.kind == "sticks":
+        name = f"contact {w.name} slip reverses"
+    ev = Event(name, w.kind, w.name, t_, before, lay.as_dict(y), model.description, after_model.description,
+               detail)
+    return new_mode, k, y, ev
+
+
+def _current_signs(hyb: Hybrid, model, t_, y, p) -> dict:
+    """The friction directions of the regime in force (load → σ), kept through other contacts' changes."""
+    out = {}
+    sol = model.solution
+    for sc in sol.setup.sign_choices:
+        if sc.symbol in model.regime.signs:
+            out[sc.load] = int(model.regime.signs[sc.symbol])
+    # a contact whose friction is smooth or that sticks has no direction to keep
+    return {k: v for k, v in out.items()
+            if k not in hyb.contacts or (isinstance(hyb.contacts[k].friction, Coulomb)
+                                         and hyb.contacts[k].friction != SMOOTH)}
