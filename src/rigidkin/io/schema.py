@@ -1,0 +1,373 @@
+"""The schema of a problem file (TOML), checked with pydantic: unknown fields, missing fields and wrong
+types are refused before anything is built.
+
+A problem file has, in this order of meaning (tables may come in any order in the file):
+
+``title``, ``statement``, ``name``; ``[parameters]`` (``m = { unit = "kg", description = "...", value =
+10 }``); ``[coordinates]`` (``theta = { sense = "...", kind = "angle", initial = 0, rate = 0 }``; those
+declared first stay independent); ``[frames]`` (``R = { parent = "F", angle = "theta", axis = "z",
+basis = ["er", "et", "ez"] }``); ``[points]`` (``G = { from = "O", offset = "l/2*R.y", body = "rod" }``);
+``[bodies]`` (``rod = { shape = "slender_rod", mass = "m", length = "l", axis = "y", frame = "R", at =
+"G" }``); ``[constraints]`` (``type = "pin" | "contact" | "collar"``); ``[loads]`` (``type = "gravity" |
+"force" | "torque" | "spring" | "torsional_spring" | "damper" | "friction" | "impulse"``) and
+``[ask]``.  Field names are those of the Python API (``System.pin(name, point, body_a, ...)``).
+
+Expressions are strings in the safe expression language (:mod:`rigidkin.io.expressions`) or numbers.
+The inertial frame ``F`` (basis ``Ex, Ey, Ez``) and the origin ``O`` always exist.
+"""
+
+from __future__ import annotations
+
+import inspect
+from typing import Annotated, Any, Literal, Union
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, create_model
+
+from ..model.shapes import SHAPES
+
+
+def _expression(value: Any) -> Any:
+    if isinstance(value, bool) or not isinstance(value, str | int | float):
+        raise ValueError("expected an expression (a string such as \"l/2\") or a number")
+    return value
+
+
+def _quantity(value: Any) -> Any:
+    if isinstance(value, bool) or not isinstance(value, str | int | float):
+        raise ValueError("expected a number or a quantity with a unit (a string such as \"30 deg\")")
+    return value
+
+
+#: An expression: a string in the safe expression language, or a number.
+Expr = Annotated[Any, BeforeValidator(_expression)]
+#: A number, or a string: a quantity with a unit ("30 deg") or an expression.
+Quantity = Annotated[Any, BeforeValidator(_quantity)]
+Name = str
+State = dict[str, Quantity]
+
+
+class Strict(BaseModel):
+    """Base of every table: unknown fields are refused, types are not coerced."""
+
+    model_config = ConfigDict(extra="forbid", strict=True, populate_by_name=False)
+
+
+# declarations --------------------------------------------------------------------------------------------
+class ParameterSpec(Strict):
+    unit: str | None = None
+    dimension: str | None = None
+    description: str = ""
+    value: Quantity | None = None
+    positive: bool = True
+
+
+class CoordinateSpec(Strict):
+    sense: str
+    kind: Literal["angle", "length", "other"] = "angle"
+    unit: str | None = None
+    initial: Quantity | None = None
+    rate: Quantity | None = None
+    description: str = ""
+    positive: bool = False
+
+
+class FrameSpec(Strict):
+    parent: Name = "F"
+    angle: Expr | None = None
+    axis: Expr = "z"
+    basis: list[Name] | None = Field(default=None, min_length=3, max_length=3)
+    sequence: str | None = None
+    angles: list[Expr] | None = Field(default=None, min_length=3, max_length=3)
+    description: str = ""
+
+
+class PointSpec(Strict):
+    from_: Name = Field(default="O", alias="from")
+    offset: Expr = 0
+    body: Name | None = None
+    description: str = ""
+
+
+# bodies: one model per shape of the shape library, chosen by ``shape`` ------------------------------------
+_WORD_FIELDS = {"axis", "toward", "a_axis", "b_axis", "about"}
+
+
+def _shape_fields(cls) -> dict[str, tuple]:
+    """The dimensions a shape takes (from its constructor), as pydantic field definitions."""
+    out = {}
+    for p in inspect.signature(cls).parameters.values():
+        required = p.default is inspect.Parameter.empty
+        if p.name in _WORD_FIELDS:
+            out[p.name] = (str, ... if required else p.default)
+        elif p.name == "centre":
+            out[p.name] = (list[Expr] | None, Field(default=None, min_length=3, max_length=3))
+        elif p.name == "mass" and cls.__name__ == "Massless":
+            continue
+        else:
+            out[p.name] = (Expr | None, ... if required else None)
+    return out
+
+
+def _body_model(key: str, cls):
+    fields = _shape_fields(cls)
+    return create_model(
+        f"Body_{key}", __base__=Strict,
+        shape=(Literal[key], ...), frame=(Name, ...), at=(Name, ...), description=(str, ""),
+        centre_name=(Name | None, None), **fields)
+
+
+BODY_MODELS = {key: _body_model(key, cls) for key, cls in SHAPES.items()}
+BodySpec = Annotated[Union[tuple(BODY_MODELS.values())], Field(discriminator="shape")]  # noqa: UP007
+
+
+# surfaces and constraints -----------------------------------------------------------------------------
+class LineSpec(Strict):
+    type: Literal["line", "plane"]
+    point: Name = "O"
+    normal: Expr
+    body: Name | None = None
+    name: str = ""
+
+
+class CircleSpec(Strict):
+    type: Literal["circle", "sphere"]
+    centre: Name = "O"
+    radius: Expr
+    inside: bool = False
+    body: Name | None = None
+    name: str = ""
+    normal: Expr | None = None
+
+
+SurfaceSpec = Annotated[LineSpec | CircleSpec, Field(discriminator="type")]
+
+
+class PinSpec(Strict):
+    type: Literal["pin"]
+    point: Name
+    body_a: Name
+    body_b: Name | None = None
+    point_b: Name | None = None
+    basis: Name | None = None
+    axis: str | None = None
+    prefix: Name | None = None
+    description: str = ""
+
+
+class ContactSpec(Strict):
+    type: Literal["contact"]
+    body: Name
+    surface: SurfaceSpec
+    centre: Name | None = None
+    radius: Expr = 0
+    friction: Expr = "smooth"
+    unilateral: bool = True
+    normal_name: Name | None = None
+    friction_name: Name | None = None
+    description: str = ""
+
+
+class CollarSpec(Strict):
+    type: Literal["collar"]
+    body: Name
+    along: Expr
+    through: Name | None = None
+    point: Name | None = None
+    track_body: Name | None = None
+    friction: Expr = "smooth"
+    normal_name: Name | None = None
+    couple_name: Name | None = None
+    description: str = ""
+
+
+ConstraintSpec = Annotated[PinSpec | ContactSpec | CollarSpec, Field(discriminator="type")]
+
+
+# loads ----------------------------------------------------------------------------------------------------
+class GravitySpec(Strict):
+    type: Literal["gravity"]
+    g: Expr
+    direction: Expr | None = None
+
+
+class ForceSpec(Strict):
+    type: Literal["force"]
+    point: Name
+    vector: Expr
+    body: Name | None = None
+    description: str = ""
+
+
+class TorqueSpec(Strict):
+    type: Literal["torque"]
+    body: Name
+    vector: Expr
+    reaction_body: Name | None = None
+    description: str = ""
+
+
+class SpringSpec(Strict):
+    type: Literal["spring"]
+    point_a: Name
+    point_b: Name
+    stiffness: Expr
+    natural_length: Expr = 0
+    body_a: Name | None = None
+    body_b: Name | None = None
+    description: str = ""
+
+
+class TorsionalSpringSpec(Strict):
+    type: Literal["torsional_spring"]
+    body_a: Name
+    stiffness: Expr
+    angle: Expr
+    natural_angle: Expr = 0
+    body_b: Name | None = None
+    axis: Expr | None = None
+    description: str = ""
+
+
+class DamperSpec(Strict):
+    type: Literal["damper"]
+    point_a: Name
+    law: Expr
+    along: Expr | None = None
+    point_b: Name | None = None
+    body_a: Name | None = None
+    body_b: Name | None = None
+    description: str = ""
+
+
+class FrictionSpec(Strict):
+    type: Literal["friction"]
+    body: Name
+    centre: Name
+    normal: Expr
+    mu: Expr
+    normal_force: Expr
+    radius: Expr = 0
+    against_body: Name | None = None
+    against_point: Name | None = None
+    description: str = ""
+
+
+class ImpulseSpec(Strict):
+    type: Literal["impulse"]
+    point: Name
+    vector: Expr
+    body: Name | None = None
+    description: str = ""
+
+
+LoadSpec = Annotated[GravitySpec | ForceSpec | TorqueSpec | SpringSpec | TorsionalSpringSpec | DamperSpec
+                     | FrictionSpec | ImpulseSpec, Field(discriminator="type")]
+
+
+# questions ------------------------------------------------------------------------------------------------
+class QuestionBase(Strict):
+    name: str | None = None
+    description: str = ""
+    mode: dict[Name, str] | None = None
+    set: State | None = None
+    after: str | None = None
+
+
+class PhaseSpec(Strict):
+    name: str | None = None
+    mode: dict[Name, str] = {}
+    set: State = {}
+    until: str | None = None
+
+
+class EomQ(QuestionBase):
+    kind: Literal["eom"]
+
+
+class ReactionQ(QuestionBase):
+    kind: Literal["reaction"]
+    reaction: Name
+    start: State | None = None
+
+
+class IntegralQ(QuestionBase):
+    kind: Literal["integral"]
+    start: State | None = None
+
+
+class EventQ(QuestionBase):
+    kind: Literal["event"]
+    when: str
+    start: State | None = None
+
+
+class ExtremeQ(QuestionBase):
+    kind: Literal["extreme"]
+    coordinate: Name
+    start: State | None = None
+
+
+class ThresholdQ(QuestionBase):
+    kind: Literal["threshold"]
+    holds: str
+    start: State | None = None
+    over: list[Quantity] | None = Field(default=None, min_length=2, max_length=2)
+    expression: Expr | None = None
+
+
+class EquilibriumQ(QuestionBase):
+    kind: Literal["equilibrium"]
+
+
+class ImpulseQ(QuestionBase):
+    kind: Literal["impulse"]
+    start: State | None = None
+
+
+class IntervalQ(QuestionBase):
+    kind: Literal["interval"]
+    duration: Expr | None = None
+    until: str | None = None
+    start: State | None = None
+    regime: str | None = None
+
+
+class PhasesQ(QuestionBase):
+    kind: Literal["phases"]
+    start: State | None = None
+    phase: list[PhaseSpec] = Field(min_length=1)
+
+
+class ValueQ(QuestionBase):
+    kind: Literal["value"]
+    expression: Expr
+    at: State | None = None
+
+
+QUESTION_MODELS = (EomQ, ReactionQ, IntegralQ, EventQ, ExtremeQ, ThresholdQ, EquilibriumQ, ImpulseQ, IntervalQ,
+                   PhasesQ, ValueQ)
+QuestionSpec = Annotated[EomQ | ReactionQ | IntegralQ | EventQ | ExtremeQ | ThresholdQ | EquilibriumQ | ImpulseQ
+                         | IntervalQ | PhasesQ | ValueQ, Field(discriminator="kind")]
+
+
+class AskSpec(Strict):
+    eom: bool = True
+    reactions: list[Name] | None = None
+    question: list[QuestionSpec] = []
+
+
+# the file ---------------------------------------------------------------------------------------------------
+class ProblemFile(Strict):
+    """A whole problem file."""
+
+    title: str
+    name: Name | None = None
+    statement: str = ""
+    parameters: dict[Name, ParameterSpec] = {}
+    coordinates: dict[Name, CoordinateSpec] = Field(min_length=1)
+    frames: dict[Name, FrameSpec] = {}
+    points: dict[Name, PointSpec] = {}
+    bodies: dict[Name, BodySpec] = Field(min_length=1)
+    constraints: dict[Name, ConstraintSpec] = {}
+    loads: dict[Name, LoadSpec] = {}
+    ask: AskSpec = AskSpec()
