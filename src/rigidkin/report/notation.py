@@ -11,7 +11,9 @@ names print as words followed by the symbol (weight of rod, normal reaction N_A)
 
 from __future__ import annotations
 
+import html.entities
 import re
+import unicodedata
 from xml.dom.minidom import Element
 
 import sympy as sp
@@ -179,7 +181,7 @@ class MathMLPrinter(MathMLPresentationPrinter):
 
     def basis(self, frame, i) -> Element:
         head, sub = basis_parts(_basis_name(frame, i))
-        mi = self._el("mi", text=head, mathvariant="bold", style="font-weight:bold;font-style:normal")
+        mi = self._el("mi", text=head, mathvariant="normal", style="font-weight:bold")
         if not sub:
             return mi
         return self._el("msub", mi, self._el("mi", text=sub))
@@ -229,14 +231,36 @@ class MathMLPrinter(MathMLPresentationPrinter):
 _MATHML = MathMLPrinter()
 
 
+_FUNCTION_AFTER_PRODUCT = re.compile(r"(<mo>(?:&InvisibleTimes;|\u2062)</mo>)(<mrow><mi>[a-z]{2,}</mi>)")
+
+
+_NAMED_ENTITY = re.compile(r"&([A-Za-z][A-Za-z0-9]*);")
+
+
+def _numeric_entity(m) -> str:
+    name = m.group(1)
+    if name in ("amp", "lt", "gt", "quot", "apos"):
+        return m.group(0)
+    ch = html.entities.html5.get(name + ";")
+    return "".join(f"&#x{ord(c):x};" for c in ch) if ch else m.group(0)
+
+
+def _polish(s: str) -> str:
+    """A true minus sign, a thin space between a factor and a function name (l cos θ), and numeric
+    character references for sympy's named entities (&InvisibleTimes;), so the markup is also XML."""
+    s = s.replace("<mo>-</mo>", "<mo>\u2212</mo>")
+    s = _FUNCTION_AFTER_PRODUCT.sub(r'\1<mspace width="0.17em"></mspace>\2', s)
+    return _NAMED_ENTITY.sub(_numeric_entity, s)
+
+
 def _mathml_inner(obj) -> str:
     if isinstance(obj, str):
         return f"<mtext>{_escape(obj)}</mtext>"
     if isinstance(obj, Vector):
-        return _MATHML._print_Vector(obj).toxml()
+        return _polish(_MATHML._print_Vector(obj).toxml())
     if isinstance(obj, Dyadic):
-        return _MATHML._print_Dyadic(obj).toxml()
-    return _MATHML.doprint(sp.sympify(obj))
+        return _polish(_MATHML._print_Dyadic(obj).toxml())
+    return _polish(_MATHML.doprint(sp.sympify(obj)))
 
 
 def _escape(s: str) -> str:
@@ -323,15 +347,28 @@ def _latex_text(s: str) -> str:
 
 
 def latex_text(s: str) -> str:
-    """Plain text (a title, a reason) for a TeX document, Unicode math characters made TeX."""
-    s = s.replace("\\", r"\textbackslash{}")
-    s = _latex_text(s)
+    """Plain text (a title, a reason) for a TeX document: TeX's specials escaped, Unicode made TeX (ASCII out)."""
+    s = s.replace("\\", "\0")
+    s = _latex_text(s).replace("\0", r"\textbackslash{}")
     repl = {"≥": r"$\geq$", "≤": r"$\leq$", "×": r"$\times$", "·": r"$\cdot$", "−": "-", "→": r"$\to$",
             "⊗": r"$\otimes$", "²": r"$^2$", "³": r"$^3$", "°": r"$^\circ$", "≈": r"$\approx$",
             "\u0307": "", "\u0308": "", "\u0302": "", "–": "--", "—": "---", "…": r"\ldots{}"}
     for k, v in repl.items():
         s = s.replace(k, v)
-    return s
+    return _ascii(s)
+
+
+def _ascii(s: str) -> str:
+    """Accents dropped and any other non-ASCII character shown as '?', so that any TeX engine reads it."""
+    s = unicodedata.normalize("NFKD", s)
+    return "".join(ch if ord(ch) < 128 else "?" for ch in s if not unicodedata.combining(ch))
+
+
+def _latex_unicode(s: str) -> str:
+    """Greek letters that came into math as Unicode (a symbol named ``ω_rod``) as TeX commands."""
+    for ch, cmd in _LATEX_GREEK.items():
+        s = s.replace(ch, "{" + cmd + "}")
+    return _ascii(s)
 
 
 def latex(obj) -> str:
@@ -339,12 +376,12 @@ def latex(obj) -> str:
     if isinstance(obj, tuple) and len(obj) == 2:
         return f"{latex(obj[0])} = {latex(obj[1])}"
     if isinstance(obj, str):
-        return rf"\text{{{_latex_text(obj)}}}"
+        return rf"\text{{{latex_text(obj)}}}"
     if isinstance(obj, Vector):
-        return _LATEX._print_Vector(obj)
+        return _latex_unicode(_LATEX._print_Vector(obj))
     if isinstance(obj, Dyadic):
-        return _LATEX._print_Dyadic(obj)
-    return _LATEX.doprint(sp.sympify(obj))
+        return _latex_unicode(_LATEX._print_Dyadic(obj))
+    return _latex_unicode(_LATEX.doprint(sp.sympify(obj)))
 
 
 def latex_condition(expr, relation: str) -> str:

@@ -1,0 +1,100 @@
+"""``rigidkin report PROBLEM -o out.html|out.md|out.tex [--simulate T]``: the derivation as a document.
+
+The format follows the output's extension.  The HTML page is one self-contained file (MathML,
+inline figures, an inline animation player); Markdown and LaTeX put their figures in a folder
+``<name>_files/`` beside the document.
+"""
+
+from __future__ import annotations
+
+from ..errors import InputError
+
+
+def register(sub) -> None:
+    p = sub.add_parser("report", help="write the step-by-step derivation as HTML, Markdown or LaTeX",
+                       description="Write the derivation of a problem (frames, kinematics, free-body diagrams, "
+                                   "balance laws, solving, answers, checks) as a document; with --simulate, add "
+                                   "time histories, a phase portrait and an animation of the motion.")
+    p.add_argument("problem", help="a problem file (.toml) or a bundled example name")
+    p.add_argument("-o", "--output", required=True, help="output file: .html, .md or .tex")
+    p.add_argument("--simulate", type=float, metavar="T", help="simulate from t = 0 to T seconds and show it")
+    p.add_argument("--method", default="newton-euler", help="the balance law (default newton-euler)")
+    p.add_argument("--mode", action="append", default=[], metavar="CONTACT=STATE",
+                   help="state of a contact (open, slip, stick) for the derivation")
+    p.add_argument("--at", action="append", default=[], metavar="NAME=VALUE",
+                   help="coordinate value of the configuration the free-body diagrams show (default: initial)")
+    p.add_argument("--gif", metavar="PATH", help="also write the animation as a GIF (needs --simulate)")
+    p.add_argument("--no-figures", action="store_true", help="leave out the figures and the animation")
+    p.add_argument("--no-animation", action="store_true", help="leave out the animation")
+    p.add_argument("--no-checks", action="store_true", help="do not run the cross-check by other laws")
+    p.set_defaults(func=run)
+
+
+def _pairs(items, what: str) -> dict:
+    out = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip() or not value.strip():
+            raise InputError(f"'{item}' is not of the form NAME=VALUE.", where=what,
+                             hint="Write, e.g., --at theta=0.6 or --mode A=open.")
+        out[name.strip()] = value.strip()
+    return out
+
+
+def _numbers(pairs: dict, what: str) -> dict:
+    from ..units import to_si
+
+    return {k: to_si(v, None, f"{what} {k}") for k, v in pairs.items()}
+
+
+def _questions(spec) -> list:
+    """The questions of a problem file's [ask] section, when the reader provides them."""
+    if spec is None:
+        return []
+    for attr in ("questions", "ask"):
+        q = getattr(spec, attr, None)
+        q = q() if callable(q) else q
+        if q and all(hasattr(x, "kind") and hasattr(x, "name") for x in q):
+            return list(q)
+    return []
+
+
+def run(args) -> int:
+    from ..report.document import build_document
+    from ..report.output import format_of, write_document
+    from .common import load_system
+
+    fmt = format_of(args.output)
+    if args.gif and args.simulate is None:
+        raise InputError("--gif needs a simulation to animate.", where="report --gif",
+                         hint="Add --simulate T (seconds).")
+    if args.simulate is not None and not args.simulate > 0:
+        raise InputError(f"--simulate needs a positive end time, not {args.simulate}.", where="report --simulate")
+    system, spec = load_system(args.problem)
+    mode = _pairs(args.mode, "report --mode")
+    at = _numbers(_pairs(args.at, "report --at"), "report --at")
+    solution = system.solve(method=args.method, mode=mode)
+    answers = None
+    questions = _questions(spec)
+    if questions:
+        from ..analysis.answers import answer_all
+
+        answers = answer_all(system, questions)
+    result = None
+    if args.simulate is not None:
+        from ..numeric.simulate import simulate
+
+        result = simulate(system, (0.0, args.simulate))
+    figures = not args.no_figures
+    animate = figures and not args.no_animation and (fmt == "html" or args.gif is not None)
+    doc = build_document(solution, simulation=result, answers=answers, figures=figures, animation=animate,
+                         checks=not args.no_checks, values=at or None)
+    path = write_document(doc, args.output)
+    print(f"wrote {path}")
+    if args.gif:
+        from ..report.animate import animation_of
+
+        anim = animation_of(result)
+        anim.save_gif(args.gif)
+        print(f"wrote {args.gif}")
+    return 0

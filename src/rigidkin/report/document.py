@@ -1,0 +1,287 @@
+"""The report as a document: sections of blocks that every renderer (Markdown, LaTeX, HTML) reads.
+
+``build_document`` lays a solution out in the order of the method: the problem, its parameters and
+coordinates, then the derivation trace section by section (frames and coordinates, kinematics,
+inertia and momentum, free-body diagram, balance laws, solving), the answers, the cross-checks and
+the simulation.  The derivation text is the trace's own (what the laws recorded as they computed);
+this module only arranges it and adds the tables and figures.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from ..printing import text as plain_text
+from ..trace import SECTIONS
+
+t = dynamicsymbols._t
+
+
+# blocks ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Math:
+    """A formula: an expression, vector or dyadic, an equation (lhs, rhs), or ``expr relation 0``."""
+
+    obj: object
+    relation: str | None = None
+
+
+@dataclass(frozen=True)
+class Paragraph:
+    text: str
+
+
+@dataclass(frozen=True)
+class Equations:
+    """Displayed formulas, one per line."""
+
+    items: tuple[Math, ...]
+
+
+@dataclass(frozen=True)
+class Step:
+    """One recorded step of the derivation: title, formulas, why, and the law that recorded it."""
+
+    title: str
+    equations: tuple[Math, ...]
+    why: str = ""
+    law: str = ""
+
+
+@dataclass(frozen=True)
+class Table:
+    """A table whose cells are text (str) or ``Math``."""
+
+    columns: tuple[str, ...]
+    rows: tuple[tuple, ...]
+    caption: str = ""
+
+
+@dataclass(frozen=True)
+class Figure:
+    key: str
+    png: bytes
+    caption: str
+    alt: str = ""
+
+
+@dataclass(frozen=True)
+class Animation:
+    key: str
+    html: str              # an HTML5 player (matplotlib's to_jshtml: frames and script, no network)
+    gif: bytes | None
+    caption: str
+
+
+@dataclass
+class Section:
+    key: str
+    title: str
+    blocks: list = field(default_factory=list)
+
+
+@dataclass
+class Document:
+    title: str
+    subtitle: str
+    sections: list[Section]
+
+    def section(self, key: str) -> Section:
+        for s in self.sections:
+            if s.key == key:
+                return s
+        raise KeyError(key)
+
+
+def slug(title: str) -> str:
+    return re.sub(r"[^a-z0-9]+", "-", title.lower()).strip("-")
+
+
+#: Sections of every report, in order: (key, title).
+REPORT_SECTIONS = (("problem", "Problem"), ("inputs", "Parameters and coordinates")) + tuple(
+    (slug(s), s) for s in SECTIONS if s not in ("Answers", "Checks")) + (
+    ("answers", "Answers"), ("checks", "Checks"), ("simulation", "Simulation"))
+
+
+# building -------------------------------------------------------------------------------------------
+def _value(v, unit: str = "") -> str:
+    if v is None:
+        return "—"
+    return f"{v:.6g}" + (f" {unit}" if unit else "")
+
+
+def _unit_of(info) -> str:
+    unit = getattr(info, "unit", "") or ""
+    if unit:
+        return unit
+    kind = getattr(info, "kind", "")
+    return {"angle": "rad", "length": "m"}.get(kind, "")
+
+
+def inputs_tables(system, solution=None) -> list[Table]:
+    """The parameters (symbol, meaning, unit, value) and coordinates (symbol, sense, kind, unit, initial state)."""
+    prows = []
+    for p in system.parameter_info.values():
+        prows.append((Math(p.symbol), p.description or "", p.unit or "—", _value(p.value)))
+    independent = set(solution.coordinates) if solution is not None else set(system.coordinates)
+    crows = []
+    for c in system.coordinate_info.values():
+        role = "independent" if c.symbol in independent else "dependent"
+        unit = _unit_of(c)
+        rate_unit = f"{unit}/s" if unit else "1/s"
+        crows.append((Math(c.symbol), c.sense or c.description or "", c.kind, unit or "—", role,
+                      _value(c.initial, unit), _value(c.rate, rate_unit)))
+    return [Table(("Parameter", "Meaning", "Unit", "Value"), tuple(prows), "Parameters"),
+            Table(("Coordinate", "Sense", "Kind", "Unit", "Role", "Initial value", "Initial rate"), tuple(crows),
+                  "Generalised coordinates")]
+
+
+def _step(s) -> Step:
+    return Step(s.title, tuple(Math(eq) for eq in s.equations), s.why, s.law)
+
+
+def answers_blocks(solution) -> list:
+    """The equations of motion, accelerations, reactions and their conditions, regime by regime."""
+    out = []
+    if solution.relations:
+        out.append(Paragraph("Constraint relations (the dependent coordinates):"))
+        out.append(Equations(tuple(Math((q, e)) for q, e in solution.relations.items())))
+    if solution.rate_relations:
+        out.append(Paragraph("Dependent rates:"))
+        out.append(Equations(tuple(Math((q, e)) for q, e in solution.rate_relations.items())))
+    several = len(solution.regimes) > 1
+    for i, r in enumerate(solution.regimes):
+        if several:
+            out.append(Paragraph(f"Regime {i + 1}: while " + (" and ".join(c.label for c in r.conditions) or "always")
+                                 + "."))
+            out.append(Equations(tuple(Math(c.expr, c.relation) for c in r.conditions)))
+        out.append(Paragraph("Equations of motion (each = 0 in mass-matrix form):"))
+        out.append(Equations(tuple(Math((e, sp.Integer(0))) for e in r.eom)))
+        out.append(Paragraph("In normal form:"))
+        out.append(Equations(tuple(Math((q.diff(t, 2), a)) for q, a in r.accelerations.items())))
+        if r.reactions:
+            out.append(Paragraph("Reactions as functions of the state:"))
+            out.append(Equations(tuple(Math((sp.Symbol(k), v)) for k, v in r.reactions.items())))
+        if r.validity:
+            out.append(Paragraph("The solution holds while: " + "; ".join(c.label for c in r.validity) + "."))
+            out.append(Equations(tuple(Math(c.expr, c.relation) for c in r.validity)))
+    return out
+
+
+def answer_blocks(answers) -> list:
+    """Answers to the problem's questions (``rigidkin.analysis`` Answer objects)."""
+    if not answers:
+        return []
+    rows = []
+    for a in answers:
+        value = a.value
+        cell = Math(value) if isinstance(value, sp.Basic) and not isinstance(value, sp.Tuple) else a.text
+        note = a.note or ("exact" if a.exact else f"numerical (tolerance {a.tolerance:g})" if a.tolerance else "")
+        rows.append((a.question.name, a.question.kind, cell, a.text if isinstance(cell, Math) else "", note))
+    return [Table(("Question", "Kind", "Answer", "Reading", "Note"), tuple(rows), "Answers to the questions asked")]
+
+
+def check_blocks(solution) -> list:
+    """The cross-check of the solution by other laws (``Solution.check()``), when it is available."""
+    check = getattr(solution, "check", None)
+    if check is None:
+        return [Paragraph("No cross-check is available in this installation (Solution.check).")]
+    try:
+        result = check()
+    except Exception as exc:  # a law that does not apply must not stop the report; say what happened
+        return [Paragraph(f"The cross-check could not be run: {exc}")]
+    return check_table(result)
+
+
+def _cell(v):
+    if isinstance(v, (sp.Basic,)):
+        return Math(v)
+    return str(v)
+
+
+def check_table(result) -> list:
+    """A table from a cross-check result: rows of (law, equation, verdict, how decided)."""
+    rows = getattr(result, "rows", None)
+    if rows is None and isinstance(result, (list, tuple)):
+        rows = result
+    if rows is None:
+        return [Paragraph(str(result))]
+    out = []
+    for r in rows:
+        if isinstance(r, dict):
+            out.append(tuple(_cell(v) for v in r.values()))
+            columns = tuple(str(k).capitalize() for k in r)
+        elif hasattr(r, "__dataclass_fields__"):
+            names = [f for f in r.__dataclass_fields__ if not f.startswith("_")]
+            out.append(tuple(_cell(getattr(r, f)) for f in names))
+            columns = tuple(n.replace("_", " ").capitalize() for n in names)
+        else:
+            out.append(tuple(_cell(v) for v in r))
+            columns = tuple(f"{i + 1}" for i in range(len(r)))
+    if not out:
+        return [Paragraph("The cross-check found no other law that applies.")]
+    blocks = [Table(columns, tuple(out), "Cross-check: the equations of motion by every law that applies")]
+    summary = getattr(result, "summary", None)
+    if summary:
+        blocks.insert(0, Paragraph(str(summary() if callable(summary) else summary)))
+    return blocks
+
+
+def build_document(solution, simulation=None, answers=None, figures: bool = True, animation: bool = True,
+                   checks: bool = True, values=None) -> Document:
+    """The report of ``solution`` (and of a simulation result, if given) as a Document.
+
+    ``figures`` draws the free-body diagrams (and, with a simulation, its plots); ``animation`` adds an
+    animation of the simulated motion; ``checks`` runs the cross-check; ``values`` is the configuration
+    the free-body diagrams are drawn in (default: the initial values).
+    """
+    system = solution.system
+    sections = {key: Section(key, title) for key, title in REPORT_SECTIONS}
+    prob = sections["problem"]
+    prob.blocks.append(Paragraph(system.statement or "(no statement given)"))
+    states = ", ".join(f"{k}: {v}" for k, v in solution.states.items())
+    prob.blocks.append(Paragraph(f"Derived with the {solution.method} law" + (f"; contacts: {states}." if states
+                                                                             else ".")))
+    sections["inputs"].blocks.extend(inputs_tables(system, solution))
+    for s in solution.trace.steps:
+        key = slug(s.section)
+        if key in sections:
+            sections[key].blocks.append(_step(s))
+    if figures and system.bodies:
+        from .fbd import free_body_diagram
+
+        fbd = free_body_diagram(solution, values=values)
+        try:
+            shown = ", ".join(f"{plain_text(k)} = {v:.4g}" for k, v in fbd.configuration.items() if k != t)
+            note = f" Parameters drawn at 1 (no value given): {', '.join(fbd.assumed)}." if fbd.assumed else ""
+            sections["free-body-diagram"].blocks.insert(0, Figure(
+                "fbd", fbd.png(), f"Free-body diagrams at {shown}. Applied loads start at their point; reactions "
+                                  f"(unknowns) end at it, in the sense their symbol is positive.{note}",
+                "free-body diagrams"))
+        finally:
+            fbd.close()
+    ans = sections["answers"]
+    ans.blocks.extend(answer_blocks(answers))
+    ans.blocks.extend(answers_blocks(solution))
+    for s in solution.trace.section("Answers"):
+        ans.blocks.append(_step(s))
+    chk = sections["checks"]
+    for s in solution.trace.section("Checks"):
+        chk.blocks.append(_step(s))
+    if checks:
+        chk.blocks.extend(check_blocks(solution))
+    sim = sections["simulation"]
+    if simulation is None:
+        sim.blocks.append(Paragraph("No simulation was asked for (rigidkin report ... --simulate T)."))
+    else:
+        from .plots import simulation_blocks
+
+        sim.blocks.extend(simulation_blocks(simulation, solution, figures=figures, animation=animation))
+    for sec in sections.values():
+        if not sec.blocks:
+            sec.blocks.append(Paragraph("Nothing was recorded in this section for this model and law."))
+    return Document(system.title, f"{system.name} — {solution.method}", list(sections.values()))

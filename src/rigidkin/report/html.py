@@ -1,0 +1,114 @@
+"""A self-contained HTML page of a report: native MathML, inline figures, an inline animation player.
+
+Everything the page shows is inside the one file: formulas are presentation MathML (rendered by the
+browser itself, no script), figures are PNG data URIs, the animation is matplotlib's HTML5 player
+with its frames embedded.  A content security policy forbids every fetch, so the page cannot reach
+the network even by accident.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import re
+
+from .document import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
+from .notation import mathml, mathml_condition
+
+CSP = "default-src 'none'; img-src data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'"
+
+STYLE = """
+body { font-family: "DejaVu Serif", Georgia, serif; margin: 0; color: #1b1b1b; background: #fafafa; }
+header { background: #1f3b5c; color: white; padding: 1.2em 2em; }
+header h1 { margin: 0 0 .2em 0; font-size: 1.7em; }
+header .subtitle { margin: 0; opacity: .85; }
+nav { font-family: "DejaVu Sans", sans-serif; font-size: .9em; margin-top: .8em; }
+nav a { color: #d6e4f5; margin-right: 1em; text-decoration: none; white-space: nowrap; }
+main { max-width: 60em; margin: 0 auto; padding: 1em 2em 4em 2em; }
+section { background: white; border: 1px solid #e2e2e2; border-radius: 6px; padding: .6em 1.4em 1em 1.4em;
+          margin: 1.2em 0; }
+h2 { color: #1f3b5c; border-bottom: 2px solid #c9d6e8; padding-bottom: .2em; }
+h3 { font-size: 1.05em; margin: 1.1em 0 .3em 0; }
+.law { font-family: "DejaVu Sans", sans-serif; font-size: .7em; color: #777; font-weight: normal;
+       margin-left: .6em; }
+.step { border-left: 3px solid #c9d6e8; padding-left: .9em; margin: .6em 0 1em 0; }
+.why { color: #444; font-style: italic; margin: .3em 0; }
+.eqs { overflow-x: auto; }
+math[display="block"] { margin: .35em 0; font-size: 1.08em; }
+table { border-collapse: collapse; margin: .8em 0; font-size: .95em; }
+caption { text-align: left; font-weight: bold; padding: .3em 0; }
+th, td { border: 1px solid #d4d4d4; padding: .3em .6em; vertical-align: top; text-align: left; }
+th { background: #eef2f7; }
+figure { margin: 1em 0; text-align: center; }
+figure img { max-width: 100%; }
+figcaption { font-size: .9em; color: #444; margin-top: .3em; }
+.animation { display: inline-block; }
+.anim-buttons button { font-size: 1em; min-width: 2.2em; }
+"""
+
+# matplotlib's player names Font Awesome icons; the page draws them as characters instead (no fetch)
+_ICONS = {"fa-minus": "−", "fa-fast-backward": "⏮", "fa-step-backward": "◀︎|", "fa-play fa-flip-horizontal": "◀",
+          "fa-pause": "⏸", "fa-play": "▶", "fa-step-forward": "|▶︎", "fa-fast-forward": "⏭", "fa-plus": "+"}
+
+
+def offline_player(player: str) -> str:
+    """matplotlib's HTML5 animation player without its stylesheet link to a CDN (icons as characters)."""
+    player = re.sub(r"<link[^>]*font-awesome[^>]*>", "", player)
+    for cls, ch in _ICONS.items():
+        player = player.replace(f'<i class="fa {cls}"></i>', f'<span class="icon">{ch}</span>')
+    return player
+
+
+def _esc(s: str) -> str:
+    return html.escape(str(s), quote=True)
+
+
+def _math(m: Math, display: bool) -> str:
+    if m.relation is not None:
+        inner = mathml_condition(m.obj, m.relation)
+        return inner.replace("<math ", '<math display="block" ', 1) if display else inner
+    return mathml(m.obj, display=display)
+
+
+def _cell(c) -> str:
+    return _math(c, False) if isinstance(c, Math) else _esc(c)
+
+
+def _block(b) -> str:
+    if isinstance(b, Paragraph):
+        return f"<p>{_esc(b.text)}</p>"
+    if isinstance(b, Equations):
+        return '<div class="eqs">' + "".join(_math(m, True) for m in b.items) + "</div>"
+    if isinstance(b, Step):
+        law = f'<span class="law">{_esc(b.law)}</span>' if b.law else ""
+        eqs = '<div class="eqs">' + "".join(_math(m, True) for m in b.equations) + "</div>" if b.equations else ""
+        why = f'<p class="why">{_esc(b.why)}</p>' if b.why else ""
+        return f'<div class="step"><h3>{_esc(b.title)}{law}</h3>{eqs}{why}</div>'
+    if isinstance(b, Table):
+        head = "".join(f"<th>{_esc(c)}</th>" for c in b.columns)
+        rows = "".join("<tr>" + "".join(f"<td>{_cell(c)}</td>" for c in r) + "</tr>" for r in b.rows)
+        cap = f"<caption>{_esc(b.caption)}</caption>" if b.caption else ""
+        return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>"
+    if isinstance(b, Figure):
+        data = base64.b64encode(b.png).decode("ascii")
+        return (f'<figure id="fig-{_esc(b.key)}"><img src="data:image/png;base64,{data}" alt="{_esc(b.alt)}">'
+                f"<figcaption>{_esc(b.caption)}</figcaption></figure>")
+    if isinstance(b, Animation):
+        return (f'<figure id="animation-{_esc(b.key)}" class="animation-figure">{offline_player(b.html)}'
+                f"<figcaption>{_esc(b.caption)}</figcaption></figure>")
+    raise TypeError(f"unknown block {b!r}")
+
+
+def to_html(doc: Document) -> str:
+    """The whole page as a string."""
+    nav = "".join(f'<a href="#{s.key}">{i + 1}. {_esc(s.title)}</a>' for i, s in enumerate(doc.sections))
+    body = []
+    for i, s in enumerate(doc.sections):
+        blocks = "\n".join(_block(b) for b in s.blocks)
+        body.append(f'<section id="{s.key}"><h2>{i + 1}. {_esc(s.title)}</h2>\n{blocks}\n</section>')
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f'<meta http-equiv="Content-Security-Policy" content="{CSP}">'
+            '<meta name="viewport" content="width=device-width, initial-scale=1">'
+            f"<title>{_esc(doc.title)}</title><style>{STYLE}</style></head>\n<body>"
+            f'<header><h1>{_esc(doc.title)}</h1><p class="subtitle">{_esc(doc.subtitle)}</p><nav>{nav}</nav></header>'
+            f"<main>\n" + "\n".join(body) + "\n</main></body></html>\n")

@@ -1,0 +1,74 @@
+"""Writing a report to a file: the format from the file's extension (.html, .md, .tex).
+
+An HTML report is one file.  Markdown and LaTeX reports put their figures (PNG) and the animation
+(GIF) in a folder beside the document, ``<name>_files/``, and refer to them by relative path.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..errors import InputError
+from .document import Animation, Document, Figure, build_document
+
+FORMATS = {".html": "html", ".htm": "html", ".md": "markdown", ".markdown": "markdown", ".tex": "latex"}
+
+
+def format_of(path) -> str:
+    fmt = FORMATS.get(Path(path).suffix.lower())
+    if fmt is None:
+        raise InputError(f"cannot tell the report format from '{path}'.", where="report output",
+                         hint="Name the output file with one of the extensions .html, .md or .tex.")
+    return fmt
+
+
+def render(doc: Document, fmt: str, files: dict | None = None) -> str:
+    """The document as text in ``fmt`` ("html", "markdown" or "latex")."""
+    if fmt == "html":
+        from .html import to_html
+
+        return to_html(doc)
+    if fmt == "markdown":
+        from .markdown import to_markdown
+
+        return to_markdown(doc, files)
+    if fmt == "latex":
+        from .latex import to_latex
+
+        return to_latex(doc, files)
+    raise InputError(f"unknown report format '{fmt}'.", hint="Use html, markdown or latex.")
+
+
+def write_document(doc: Document, path) -> Path:
+    """Write ``doc`` to ``path`` (and its figures beside it for Markdown and LaTeX)."""
+    path = Path(path)
+    fmt = format_of(path)
+    files: dict = {}
+    if fmt != "html":
+        assets = path.with_name(path.stem + "_files")
+        for sec in doc.sections:
+            for b in sec.blocks:
+                if isinstance(b, Figure):
+                    assets.mkdir(parents=True, exist_ok=True)
+                    (assets / f"{b.key}.png").write_bytes(b.png)
+                    files[b.key] = f"{assets.name}/{b.key}.png"
+                elif isinstance(b, Animation) and b.gif:
+                    assets.mkdir(parents=True, exist_ok=True)
+                    (assets / f"animation-{b.key}.gif").write_bytes(b.gif)
+                    files[f"animation-{b.key}"] = f"{assets.name}/animation-{b.key}.gif"
+    try:
+        path.write_text(render(doc, fmt, files), encoding="utf-8")
+    except OSError as exc:
+        raise InputError(f"cannot write the report: {exc.strerror}.", where=str(path),
+                         hint="Check that the folder exists and is writable.") from None
+    return path
+
+
+def write_report(solution, path, simulation=None, answers=None, figures: bool = True, animation: bool = True,
+                 checks: bool = True, values=None) -> Path:
+    """Build the report of ``solution`` (see :func:`build_document`) and write it to ``path``."""
+    format_of(path)
+    doc = build_document(solution, simulation=simulation, answers=answers, figures=figures,
+                         animation=animation and format_of(path) == "html" or animation and simulation is not None,
+                         checks=checks, values=values)
+    return write_document(doc, path)
