@@ -24,6 +24,10 @@ def register(sub) -> None:
     p.add_argument("--at", action="append", default=[], metavar="NAME=VALUE",
                    help="coordinate value of the configuration the free-body diagrams show (default: initial)")
     p.add_argument("--gif", metavar="PATH", help="also write the animation as a GIF (needs --simulate)")
+    p.add_argument("--initial", action="append", default=[], metavar="NAME=VALUE",
+                   help="initial coordinate or rate for the simulation (theta=0.1, dot(theta)=0; units allowed)")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="parameter value for the simulation and the figures (units allowed: beta=30 deg)")
     p.add_argument("--no-figures", action="store_true", help="leave out the figures and the animation")
     p.add_argument("--no-animation", action="store_true", help="leave out the animation")
     p.add_argument("--no-checks", action="store_true", help="do not run the cross-check by other laws")
@@ -60,7 +64,7 @@ def _questions(spec) -> list:
 
 
 def run(args) -> int:
-    from ..report.document import build_document
+    from ..report.document import Animation, build_document
     from ..report.output import format_of, write_document
     from .common import load_system
 
@@ -80,21 +84,32 @@ def run(args) -> int:
         from ..analysis.answers import answer_all
 
         answers = answer_all(system, questions)
+    params = _pairs(args.set, "report --set")
     result = None
     if args.simulate is not None:
         from ..numeric.simulate import simulate
 
-        result = simulate(system, (0.0, args.simulate))
+        result = simulate(system, (0.0, args.simulate), initial_state=_pairs(args.initial, "report --initial") or None,
+                          params=params or None)
+    elif args.initial:
+        raise InputError("--initial sets the start of a simulation.", where="report --initial",
+                         hint="Add --simulate T (seconds).")
     figures = not args.no_figures
-    animate = figures and not args.no_animation and (fmt == "html" or args.gif is not None)
+    animate = figures and not args.no_animation
     doc = build_document(solution, simulation=result, answers=answers, figures=figures, animation=animate,
-                         checks=not args.no_checks, values=at or None)
+                         checks=not args.no_checks, values=at or None, gif=fmt != "html" or bool(args.gif),
+                         parameters=_numbers(params, "report --set") or None)
     path = write_document(doc, args.output)
     print(f"wrote {path}")
     if args.gif:
-        from ..report.animate import animation_of
-
-        anim = animation_of(result)
-        anim.save_gif(args.gif)
+        gifs = [b.gif for s in doc.sections for b in s.blocks if isinstance(b, Animation) and b.gif]
+        if not gifs:
+            raise InputError("there is no animation to write as a GIF.", where="report --gif",
+                             hint="Leave out --no-figures and --no-animation.")
+        try:
+            with open(args.gif, "wb") as f:
+                f.write(gifs[0])
+        except OSError as exc:
+            raise InputError(f"cannot write the GIF: {exc.strerror}.", where=args.gif) from None
         print(f"wrote {args.gif}")
     return 0

@@ -232,12 +232,14 @@ def check_table(result) -> list:
 
 
 def build_document(solution, simulation=None, answers=None, figures: bool = True, animation: bool = True,
-                   checks: bool = True, values=None) -> Document:
+                   checks: bool = True, values=None, gif: bool = False, frames: int = 80,
+                   parameters=None) -> Document:
     """The report of ``solution`` (and of a simulation result, if given) as a Document.
 
     ``figures`` draws the free-body diagrams (and, with a simulation, its plots); ``animation`` adds an
-    animation of the simulated motion; ``checks`` runs the cross-check; ``values`` is the configuration
-    the free-body diagrams are drawn in (default: the initial values).
+    animation of the simulated motion (``frames`` frames; with ``gif`` also as a GIF); ``checks`` runs
+    the cross-check; ``values`` is the configuration the free-body diagrams are drawn in (default: the
+    initial values); ``parameters`` overrides parameter values in the figures (name → number).
     """
     system = solution.system
     sections = {key: Section(key, title) for key, title in REPORT_SECTIONS}
@@ -254,7 +256,7 @@ def build_document(solution, simulation=None, answers=None, figures: bool = True
     if figures and system.bodies:
         from .fbd import free_body_diagram
 
-        fbd = free_body_diagram(solution, values=values)
+        fbd = free_body_diagram(solution, values=values, parameters=parameters)
         try:
             shown = ", ".join(f"{plain_text(k)} = {v:.4g}" for k, v in fbd.configuration.items() if k != t)
             note = f" Parameters drawn at 1 (no value given): {', '.join(fbd.assumed)}." if fbd.assumed else ""
@@ -280,7 +282,8 @@ def build_document(solution, simulation=None, answers=None, figures: bool = True
     else:
         from .plots import simulation_blocks
 
-        sim.blocks.extend(simulation_blocks(simulation, solution, figures=figures, animation=animation))
+        sim.blocks.extend(simulation_blocks(simulation, solution, figures=figures, animation=animation, gif=gif,
+                                            frames=frames))
     for sec in sections.values():
         if not sec.blocks:
             sec.blocks.append(Paragraph("Nothing was recorded in this section for this model and law."))

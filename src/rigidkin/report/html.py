@@ -35,6 +35,7 @@ h3 { font-size: 1.05em; margin: 1.1em 0 .3em 0; }
 .why { color: #444; font-style: italic; margin: .3em 0; }
 .eqs { overflow-x: auto; }
 math[display="block"] { margin: .35em 0; font-size: 1.08em; }
+td math { font-size: 1.1em; }
 table { border-collapse: collapse; margin: .8em 0; font-size: .95em; }
 caption { text-align: left; font-weight: bold; padding: .3em 0; }
 th, td { border: 1px solid #d4d4d4; padding: .3em .6em; vertical-align: top; text-align: left; }
@@ -47,8 +48,9 @@ figcaption { font-size: .9em; color: #444; margin-top: .3em; }
 """
 
 # matplotlib's player names Font Awesome icons; the page draws them as characters instead (no fetch)
-_ICONS = {"fa-minus": "−", "fa-fast-backward": "⏮", "fa-step-backward": "◀︎|", "fa-play fa-flip-horizontal": "◀",
-          "fa-pause": "⏸", "fa-play": "▶", "fa-step-forward": "|▶︎", "fa-fast-forward": "⏭", "fa-plus": "+"}
+_ICONS = {"fa-minus": "\u2212", "fa-fast-backward": "\u21e4", "fa-step-backward": "\u25c1",
+          "fa-play fa-flip-horizontal": "\u25c0", "fa-pause": "\u2016", "fa-play": "\u25b6",
+          "fa-step-forward": "\u25b7", "fa-fast-forward": "\u21e5", "fa-plus": "+"}
 
 
 def offline_player(player: str) -> str:

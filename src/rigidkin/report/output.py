@@ -67,8 +67,7 @@ def write_document(doc: Document, path) -> Path:
 def write_report(solution, path, simulation=None, answers=None, figures: bool = True, animation: bool = True,
                  checks: bool = True, values=None) -> Path:
     """Build the report of ``solution`` (see :func:`build_document`) and write it to ``path``."""
-    format_of(path)
-    doc = build_document(solution, simulation=simulation, answers=answers, figures=figures,
-                         animation=animation and format_of(path) == "html" or animation and simulation is not None,
-                         checks=checks, values=values)
+    fmt = format_of(path)
+    doc = build_document(solution, simulation=simulation, answers=answers, figures=figures, animation=animation,
+                         checks=checks, values=values, gif=fmt != "html")
     return write_document(doc, path)
