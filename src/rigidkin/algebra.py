@@ -90,27 +90,100 @@ def is_zero(expr: sp.Basic, trials: int = 4, seed: int = 1, tol: float = 1e-10) 
 
 
 def readable(expr: sp.Basic) -> sp.Basic:
-    """Simplify for a person to read: cancel, trigsimp and factor_terms, bounded by size."""
+    """Simplify for a person to read: cancel, trigsimp and factor_terms, bounded by size.
+
+    The work is done on plain symbols standing for q(t), q̇, q̈ (sympy is several times faster on
+    symbols than on functions of time and their derivatives), then the state is put back.
+    """
     expr = sp.sympify(expr)
     if expr.is_number or expr.is_Symbol:
         return sp.nsimplify(expr) if expr.is_Float else expr
-    small = sp.count_ops(expr) <= SIMPLIFY_LIMIT
+    plain, back = plain_state(expr)
+    key = plain
+    hit = _READABLE_CACHE.get(key)
+    if hit is None:
+        hit = _readable_plain(plain)
+        if len(_READABLE_CACHE) > 20000:
+            _READABLE_CACHE.clear()
+        _READABLE_CACHE[key] = hit
+    return hit.xreplace(back) if back else hit
+
+
+_READABLE_CACHE: dict = {}
+
+
+def _ops(e) -> int:
+    return sp.count_ops(e)
+
+
+def trig_reduce(expr: sp.Basic) -> sp.Basic:
+    """Simplify a rational expression in sines and cosines by reduction modulo sin² + cos² = 1.
+
+    Each angle a gets symbols S = sin a, C = cos a; the expression is cancelled as a rational
+    function and its numerator and denominator reduced by S² + C² − 1 (trying both term orders and
+    keeping the shorter).  This is polynomial algebra, far cheaper than ``trigsimp`` on the
+    expressions multibody kinematics produce, and it decides the identities that matter here.
+    """
+    trig = [f for f in expr.atoms(sp.sin, sp.cos, sp.tan)]
+    if not trig:
+        return sp.cancel(expr) if expr.is_rational_function() else expr
+    e = expr.rewrite(sp.tan, sp.sin) if expr.has(sp.tan) else expr
+    e = e.xreplace({f: sp.expand_trig(f) for f in e.atoms(sp.sin, sp.cos) if f.args[0].is_Add or f.args[0].is_Mul
+                    and f.args[0].args[0].is_Integer})
+    args = sorted({f.args[0] for f in e.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    S = [sp.Dummy(f"s{i}") for i in range(len(args))]
+    C = [sp.Dummy(f"c{i}") for i in range(len(args))]
+    fwd = {}
+    for a, si, ci in zip(args, S, C):
+        fwd[sp.sin(a)] = si
+        fwd[sp.cos(a)] = ci
+    p = e.xreplace(fwd)
+    if p.atoms(sp.Function):
+        return expr
     try:
-        e = sp.cancel(expr) if small else expr
-        if small:
-            e = sp.trigsimp(e)
-            e2 = sp.factor_terms(sp.expand(e))
-            e2 = sp.factor_terms(sp.trigsimp(e2))
-            if sp.count_ops(e2) < sp.count_ops(e):
-                e = e2
-            e3 = sp.factor_terms(e)
-            if sp.count_ops(e3) <= sp.count_ops(e):
-                e = e3
-            if not e.has(sp.Derivative) or sp.count_ops(e) < 60:
-                e4 = sp.factor(e)
-                if sp.count_ops(e4) < sp.count_ops(e):
-                    e = e4
+        num, den = sp.fraction(sp.cancel(p))
+        rels = [si**2 + ci**2 - 1 for si, ci in zip(S, C)]
+        best = None
+        for order in (S + C, C + S):
+            gens = order + sorted(p.free_symbols - set(S) - set(C), key=sp.default_sort_key)
+            n_r = sp.reduced(num, rels, *gens)[1] if num.free_symbols & set(S + C) else num
+            d_r = sp.reduced(den, rels, *gens)[1] if den.free_symbols & set(S + C) else den
+            cand = sp.cancel(n_r / d_r)
+            if best is None or _ops(cand) < _ops(best):
+                best = cand
+    except (sp.PolynomialError, NotImplementedError, sp.polys.polyerrors.PolificationFailed):
+        return expr
+    back = {v: k for k, v in fwd.items()}
+    return best.xreplace(back)
+
+
+def _tidy(e: sp.Basic) -> sp.Basic:
+    """Collect sums by the rates (R θ̇² − r θ̇² → (R − r) θ̇²) wherever that shortens them."""
+    rates = sorted((s for s in e.free_symbols if s.name.endswith("_d1") and s.name.startswith("_")), key=str)
+    if not rates:
         return e
+
+    def collect(x):
+        c = sp.collect(x, rates, func=sp.factor_terms)
+        return c if _ops(c) < _ops(x) else x
+
+    out = e.replace(lambda x: x.is_Add and x.has(*rates), collect)
+    return out if _ops(out) <= _ops(e) else e
+
+
+def _readable_plain(expr: sp.Basic) -> sp.Basic:
+    if _ops(expr) > SIMPLIFY_LIMIT:
+        return expr
+    try:
+        e = trig_reduce(expr)
+        if _ops(e) > _ops(expr):
+            e = expr
+        e = sp.factor_terms(e)
+        if _ops(e) <= 40:
+            e4 = sp.factor(e)
+            if _ops(e4) < _ops(e):
+                e = e4
+        return _tidy(e)
     except (sp.PolynomialError, NotImplementedError, RecursionError):
         return expr
 
@@ -137,16 +210,28 @@ def strip_factors(expr: sp.Basic, keep: Iterable[sp.Basic] = ()) -> sp.Basic:
     return sp.Mul(*kept) if kept else sp.Integer(1)
 
 
-def leading_sign(expr: sp.Basic, unknowns: Iterable[sp.Basic]) -> int:
-    """Sign to multiply an equation ``= 0`` by so that its first unknown has a positive coefficient."""
+def leading_sign(expr: sp.Basic, unknowns: Iterable[sp.Basic], values: Mapping | None = None) -> int:
+    """Sign to multiply an equation ``= 0`` by so that its first unknown has a positive coefficient.
+
+    The coefficient's sign is read at ``values`` (parameter values) when it is not a plain number,
+    so that 3(r − R) θ̈ with R > r reads as 3(R − r) θ̈.
+    """
     expr = sp.expand(expr)
     for u in unknowns:
         c = expr.coeff(u)
-        if c != 0:
-            c_num = sp.Mul(*[a for a in sp.Mul.make_args(c) if a.is_number]) if c.is_Mul else c
-            if c_num.is_number:
-                return -1 if c_num < 0 else 1
-            return 1
+        if c == 0:
+            continue
+        if values:
+            try:
+                v = complex(sp.sympify(c).xreplace({k: sp.Float(x) for k, x in values.items()}).evalf())
+                if not c.free_symbols - set(values) and abs(v.imag) < 1e-12 and v.real != 0:
+                    return -1 if v.real < 0 else 1
+            except (TypeError, ValueError):
+                pass
+        c_num = sp.Mul(*[a for a in sp.Mul.make_args(c) if a.is_number]) if c.is_Mul else c
+        if c_num.is_number:
+            return -1 if c_num < 0 else 1
+        return 1
     return 1
 
 

@@ -291,7 +291,8 @@ def _reaction_free_rows(setup, balances, reactions, solved, sign_map):
         e = sum((M[i, j] * accels[j] for j in range(len(accels))), sp.Integer(0)) - f[i]
         e = algebra.strip_factors(e)
         e = sp.collect(sp.expand(e), accels, func=sp.factor_terms) if sp.count_ops(e) < 200 else e
-        e = algebra.leading_sign(e, accels) * e
+        ref = {k: v for k, v in setup.kin.reference_values().items() if isinstance(k, sp.Symbol)}
+        e = algebra.leading_sign(e, accels, ref) * e
         eom.append(e)
     return eom, M, f
 
