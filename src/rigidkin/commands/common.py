@@ -1,7 +1,12 @@
-"""What the subcommands share: finding a problem (a bundled example name or a file) and loading it."""
+"""What the subcommands share: finding a problem (a bundled example name or a file), loading it, a
+progress line for slow steps, a time limit, and turning unexpected failures into one paragraph.
+"""
 
 from __future__ import annotations
 
+import signal
+import threading
+from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import RigidkinError
@@ -11,24 +16,101 @@ def load_system(problem: str):
     """A System from a bundled example name (``ladder``) or a problem file path.
 
     Returns (system, spec) where ``spec`` is the parsed problem file (None for a Python example).
+    A bundled example with a problem file (``examples/ladder.toml``) is read from that file.
     """
     from .. import examples
+    from ..io.problem import load_problem
 
     path = Path(problem)
     if path.suffix == ".toml" or path.exists():
-        try:
-            from ..io.problem import load_problem  # the problem-file reader
-        except ModuleNotFoundError:
-            raise RigidkinError("problem files are not supported yet.", where=problem) from None
         return load_problem(path)
     if problem in examples.names():
         toml = examples.HERE / f"{problem}.toml"
         if toml.exists():
-            try:
-                from ..io.problem import load_problem
-                return load_problem(toml)
-            except ModuleNotFoundError:
-                pass
+            return load_problem(toml)
         return examples.build(problem), None
     raise RigidkinError(f"'{problem}' is neither a problem file nor a bundled example.",
                         hint=f"Bundled examples: {', '.join(examples.names())}. Run 'rigidkin list'.")
+
+
+@contextmanager
+def progress(message: str, delay: float = 1.0):
+    """Show a rich status line on a terminal's stderr when the step takes longer than ``delay`` seconds."""
+    from rich.console import Console
+
+    console = Console(stderr=True)
+    if not console.is_terminal:
+        yield
+        return
+    status = console.status(message)
+    lock, state = threading.Lock(), {"done": False, "started": False}
+
+    def start():
+        with lock:
+            if not state["done"]:
+                status.start()
+                state["started"] = True
+
+    timer = threading.Timer(delay, start)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        with lock:
+            state["done"] = True
+            if state["started"]:
+                status.stop()
+
+
+class TimeLimit(RigidkinError):
+    """A step ran past the time limit the user gave (``--timeout``)."""
+
+
+@contextmanager
+def time_limit(seconds: float | None, what: str):
+    """Stop ``what`` with a clear error after ``seconds`` (main thread, POSIX; otherwise no limit)."""
+    usable = (seconds and seconds > 0 and hasattr(signal, "setitimer")
+              and threading.current_thread() is threading.main_thread())
+    if not usable:
+        yield
+        return
+
+    def alarm(signum, frame):
+        raise TimeLimit(f"{what} took longer than {seconds:g} s and was stopped.",
+                        hint="Simplify the model, or allow more time with --timeout SECONDS (0: no limit).")
+
+    old = signal.signal(signal.SIGALRM, alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def guarded(args, fn, *a, **kw):
+    """Run ``fn``; an unexpected exception becomes one paragraph (the traceback only with --debug)."""
+    try:
+        return fn(*a, **kw)
+    except (RigidkinError, KeyboardInterrupt, BrokenPipeError):
+        raise
+    except (RecursionError, MemoryError) as exc:
+        if getattr(args, "debug", False):
+            raise
+        raise RigidkinError(f"the problem is too large to handle ({type(exc).__name__}).",
+                            hint="Simplify the model or its expressions.") from None
+    except Exception as exc:
+        if getattr(args, "debug", False):
+            raise
+        raise RigidkinError(f"internal error: {type(exc).__name__}: {exc}",
+                            hint="This is a bug in rigidkin: run again with --debug for the traceback and report "
+                                 "it with the problem file.") from None
+
+
+def with_file(exc: RigidkinError, spec) -> RigidkinError:
+    """Say which problem file an error of the model (found while solving) comes from."""
+    if spec is not None and str(spec.path) not in (exc.where or ""):
+        exc.where = f"{spec.path}" + (f", {exc.where}" if exc.where else "")
+    return exc

@@ -10,9 +10,15 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from .. import examples
+    from ..errors import RigidkinError
     from .common import load_system
 
     for name in examples.names():
-        system, _ = load_system(name)
-        print(f"{name:22s} {system.title}")
+        form = "toml" if (examples.HERE / f"{name}.toml").exists() else "py"
+        try:
+            system, _ = load_system(name)
+            title = system.title
+        except RigidkinError as exc:
+            title = f"(cannot be loaded: {exc})"
+        print(f"{name:22s} {form:5s} {title}")
     return 0

@@ -1,18 +1,117 @@
-"""``rigidkin solve PROBLEM``: equations of motion, reactions and answers."""
+"""``rigidkin solve PROBLEM``: equations of motion, reactions and the answers a problem file asks for."""
 
 from __future__ import annotations
 
+import json
+
 
 def register(sub) -> None:
-    p = sub.add_parser("solve", help="derive the equations of motion and reactions")
-    p.add_argument("problem", help="a problem file or a bundled example name")
-    p.add_argument("--method", default="newton-euler")
+    p = sub.add_parser("solve", help="derive the equations of motion, reactions and answers")
+    p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
+    p.add_argument("--method", default="newton-euler", help="the balance law to derive with (default: newton-euler)")
+    p.add_argument("--format", default="text", choices=("text", "latex", "json"), help="output format")
+    p.add_argument("--no-answers", action="store_true", help="skip the questions in the file's [ask]")
+    p.add_argument("--timeout", type=float, default=600, metavar="SECONDS",
+                   help="stop a derivation that takes longer (default 600; 0: no limit)")
     p.set_defaults(func=run)
 
 
-def run(args) -> int:
-    from .common import load_system
+def answer_questions(system, spec, args) -> tuple[dict, list[str]]:
+    """Answer the file's questions in order; a question that cannot be answered gets its reason."""
+    from ..errors import RigidkinError
+    from .common import guarded, progress, time_limit
 
-    system, _ = load_system(args.problem)
-    print(system.solve(method=args.method))
+    questions = spec.questions if spec is not None else ()
+    if not questions or args.no_answers:
+        return {}, []
+    try:
+        from ..analysis.answers import answer
+    except ImportError:
+        return {}, ["Answers are not available in this version of rigidkin; the questions in [ask] were read "
+                    "and checked but not answered."]
+    answers, context = {}, {}
+    for q in questions:
+        try:
+            with progress(f"Answering {q.name}"), time_limit(args.timeout, f"answering '{q.name}'"):
+                a = guarded(args, answer, system, q, context)
+        except RigidkinError as exc:
+            answers[q.name] = str(exc)
+            continue
+        context[q.name] = a
+        answers[q.name] = a
+    return answers, []
+
+
+_TEX = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{",
+        "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}"}
+
+
+def _tex(text: str) -> str:
+    """Plain text for LaTeX (special characters escaped)."""
+    return "".join(_TEX.get(ch, ch) for ch in str(text))
+
+
+_REL = {">": ">", "<": "<", ">=": r"\geq", "<=": r"\leq"}
+
+
+def latex_text(sol, spec, answers) -> str:
+    import sympy as sp
+
+    from ..printing import latex
+    from ..report.text import reaction_labels
+
+    s = sol.system
+    out = [rf"\section*{{{_tex(s.title)}}}", r"\paragraph{Coordinates}", r"\begin{itemize}"]
+    for c in s.coordinate_info.values():
+        role = "" if c.symbol in sol.coordinates else " (dependent)"
+        out.append(rf"\item ${latex(c.symbol)}${role}: {_tex(c.sense)}")
+    out.append(r"\end{itemize}")
+    labels = reaction_labels(s)
+    shown = spec.reactions if spec is not None and spec.reactions is not None else None
+    for i, r in enumerate(sol.regimes):
+        if len(sol.regimes) > 1:
+            conds = r" \text{ and } ".join(f"{latex(c.expr)} {_REL[c.relation]} 0" for c in r.conditions)
+            out.append(rf"\paragraph{{Regime {i + 1}}} while ${conds}$")
+        out += [r"\paragraph{Equations of motion}", r"\begin{align*}"]
+        out.append(" \\\\\n".join(f"{latex(e)} &= 0" for e in r.eom))
+        out += [r"\end{align*}", r"\paragraph{Reactions}", r"\begin{align*}"]
+        names = [k for k in (shown if shown is not None else r.reactions) if k in r.reactions]
+        out.append(" \\\\\n".join(f"{latex(sp.Symbol(k))} &= {latex(r.reactions[k])}"
+                                  f" && \\text{{{_tex(labels.get(k, ''))}}}" for k in names))
+        out.append(r"\end{align*}")
+    if answers:
+        out += [r"\paragraph{Answers}", r"\begin{itemize}"]
+        for name, a in answers.items():
+            name_tex = _tex(name)
+            if isinstance(a, str):
+                out.append(rf"\item {name_tex}: not answered ({_tex(a)})")
+            elif hasattr(a.value, "free_symbols"):
+                out.append(rf"\item {name_tex}: ${latex(a.value)}$")
+            else:
+                out.append(rf"\item {name_tex}: {_tex(a.text)}")
+        out.append(r"\end{itemize}")
+    return "\n".join(out)
+
+
+def run(args) -> int:
+    from ..errors import RigidkinError
+    from ..io.results import solution_data
+    from ..report.text import problem_text
+    from .common import guarded, load_system, progress, time_limit, with_file
+
+    with progress(f"Reading {args.problem}"):
+        system, spec = guarded(args, load_system, args.problem)
+    try:
+        with progress(f"Deriving the equations of motion ({args.method})"), \
+                time_limit(args.timeout, "the derivation"):
+            sol = guarded(args, system.solve, method=args.method)
+    except RigidkinError as exc:
+        raise with_file(exc, spec) from None
+    answers, notes = answer_questions(system, spec, args)
+    if args.format == "json":
+        print(json.dumps(solution_data(sol, spec, answers, notes), indent=2, ensure_ascii=False))
+    elif args.format == "latex":
+        print(latex_text(sol, spec, answers))
+    else:
+        print(problem_text(sol, spec, answers, notes))
     return 0

@@ -1,4 +1,6 @@
-"""The terminal form of a solution: coordinates and senses restated, one equation per block."""
+"""The terminal form of a solution, for people: the coordinates and their senses restated, one equation
+per block in unicode math (θ̈, θ̇, µ), each reaction and answer named with what it is.
+"""
 
 from __future__ import annotations
 
@@ -7,34 +9,113 @@ from sympy.physics.vector import dynamicsymbols
 from ..printing import text
 
 t = dynamicsymbols._t
+_INDENT = "    "
 
 
-def solution_text(sol) -> str:
+def reaction_labels(system) -> dict[str, str]:
+    """Reaction name → what it is (``"normal force of contact A (wall: pushes along +Ex)"``)."""
+    out = {}
+    for c in system.constraints.values():
+        syms = c.reactions()
+        for sym in syms:
+            name = sym.name
+            kind = c.kind
+            if kind == "contact":
+                what = "normal force" if sym == c.N else "friction force"
+                label = f"{what} of contact {c.name}"
+            elif kind == "collar":
+                what = "track normal force" if name.startswith(c.N.name) else "track reaction couple"
+                label = f"{what} of collar {c.name}"
+            elif kind == "pin" and name[-1:] in ("x", "y", "z"):
+                frame = getattr(c, "basis_frame", None) or system.inertial
+                label = f"pin reaction of {c.name} along {frame.basis['xyz'.index(name[-1])]}"
+            else:
+                label = f"reaction of {kind} {c.name}"
+            if c.description:
+                label += f" ({c.description})"
+            out[name] = label
+    return out
+
+
+def _coordinates(sol) -> list[str]:
     s = sol.system
-    out = [f"{s.title} — {sol.method}"]
-    out.append("Coordinates:")
+    out = ["Coordinates"]
     for c in s.coordinate_info.values():
-        role = "" if c.symbol in sol.coordinates else " (dependent)"
-        out.append(f"  {text(c.symbol)}{role}: {c.sense or c.description}")
+        role = "" if c.symbol in sol.coordinates else "  [dependent]"
+        out.append(f"{_INDENT}{text(c.symbol)} ({c.kind}): {c.sense or c.description or 'no sense given'}{role}")
     if sol.relations:
-        out.append("Constraint relations:")
+        out.append(f"{_INDENT}while the constraints hold:")
         for q, e in sol.relations.items():
-            out.append(f"  {text(q)} = {text(e)}")
+            out.append(f"{_INDENT * 2}{text(q)} = {text(e)}")
+    return out
+
+
+def _regime(sol, r, reactions, labels) -> list[str]:
+    out = ["Equations of motion", ""]
+    for i, e in enumerate(r.eom, start=1):
+        out += [f"{_INDENT}({i})  {text(e)} = 0", ""]
+    out.append("Accelerations")
+    for q, a in r.accelerations.items():
+        out.append(f"{_INDENT}{text(q.diff(t, 2))} = {text(a)}")
+    shown = [k for k in (reactions if reactions is not None else r.reactions) if k in r.reactions]
+    if shown:
+        out += ["", "Reactions"]
+        for k in shown:
+            out.append(f"{_INDENT}{k}: {labels.get(k, 'reaction')}")
+            out.append(f"{_INDENT * 2}{k} = {text(r.reactions[k])}")
+    if r.validity:
+        out += ["", "Holds while"]
+        named = {v: k for k, v in r.reactions.items()}
+        for c in r.validity:
+            rel = c.relation.replace(">=", "≥").replace("<=", "≤")
+            if c.expr in named:
+                out.append(f"{_INDENT}{named[c.expr]} {rel} 0   ({c.label})")
+            else:
+                out.append(f"{_INDENT}{c}")
+    return out
+
+
+def solution_text(sol, reactions=None) -> str:
+    """A solution for a terminal; ``reactions`` limits the reactions shown (default: all)."""
+    s = sol.system
+    out = [s.title, f"(derived with {sol.method})", ""]
+    out += _coordinates(sol)
+    labels = reaction_labels(s)
     for i, r in enumerate(sol.regimes):
+        out.append("")
         if len(sol.regimes) > 1:
-            out.append(f"Regime {i + 1}: while {r.describe()}")
-        out.append("Equations of motion:")
-        for e in r.eom:
-            out.append(f"  {text(e)} = 0")
-        out.append("Accelerations:")
-        for q, a in r.accelerations.items():
-            out.append(f"  {text(q.diff(t, 2))} = {text(a)}")
-        if r.reactions:
-            out.append("Reactions:")
-            for k, v in r.reactions.items():
-                out.append(f"  {k} = {text(v)}")
-        if r.validity:
-            out.append("Holds while:")
-            for c in r.validity:
-                out.append(f"  {c}")
+            out += [f"Regime {i + 1} of {len(sol.regimes)}: while {r.describe()}", ""]
+        out += _regime(sol, r, reactions, labels)
     return "\n".join(out)
+
+
+def answers_text(answers: dict, questions=()) -> str:
+    """The answers, each under its name and description; a string value is the reason it is missing."""
+    if not answers:
+        return ""
+    described = {q.name: q.fields.get("description", "") for q in questions}
+    out = ["Answers"]
+    for name, a in answers.items():
+        head = f"{_INDENT}{name}" + (f" — {described[name]}" if described.get(name) else "")
+        out.append(head)
+        if isinstance(a, str):
+            out.append(f"{_INDENT * 2}not answered: {a}")
+            continue
+        for line in a.text.splitlines():
+            out.append(f"{_INDENT * 2}{line}")
+        if a.tolerance is not None and not a.exact:
+            out.append(f"{_INDENT * 2}(numerical, to within {a.tolerance:g})")
+        if a.note:
+            out.append(f"{_INDENT * 2}note: {a.note}")
+    return "\n".join(out)
+
+
+def problem_text(sol, spec=None, answers: dict | None = None, notes=()) -> str:
+    """What ``rigidkin solve`` prints: the solution, the asked reactions, the answers and notes."""
+    reactions = spec.reactions if spec is not None else None
+    parts = [solution_text(sol, reactions)]
+    if answers:
+        parts.append(answers_text(answers, spec.questions if spec is not None else ()))
+    if notes:
+        parts.append("Notes\n" + "\n".join(f"{_INDENT}{n}" for n in notes))
+    return "\n\n".join(parts)
