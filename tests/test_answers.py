@@ -178,3 +178,29 @@ def test_event_that_never_happens():
     ex = extreme(s.solve(), th, {th: sp.Rational(1, 2), th.diff(t): 0})
     assert abs(float(ex.value) + 0.5) < 1e-9
     assert np.isclose(float(ex.value), -0.5)
+
+
+def test_first_integrals_collar_rod():
+    from rigidkin.analysis.integrals import first_integrals
+    s = build("collar-rod")
+    x, th = s.coordinates
+    m1, m2, l, g = (s.parameters[k] for k in ("m1", "m2", "l", "g"))
+    found = {fi.name: fi for fi in first_integrals(s.solve(), {x: 0, th: 0, x.diff(t): 1, th.diff(t): 0})}
+    p = found["momentum conjugate to x"]
+    # horizontal momentum of collar + rod, written out by hand: (m1 + m2) ẋ + m2 (l/2) cos θ θ̇
+    assert sp.simplify(p.expression - ((m1 + m2) * x.diff(t) + m2 * l / 2 * cos(th) * th.diff(t))) == 0
+    assert p.value == m1 + m2
+    E = found["energy"].expression
+    T = m1 * x.diff(t) ** 2 / 2 + m2 * ((x.diff(t) + l / 2 * cos(th) * th.diff(t)) ** 2
+                                         + (l / 2 * sin(th) * th.diff(t)) ** 2) / 2 + m2 * l**2 / 24 * th.diff(t) ** 2
+    assert sp.simplify(E - (T - m2 * g * l / 2 * cos(th))) == 0
+    # slipping friction does work: no energy integral while the cylinder slides
+    s2 = build("slip-to-roll")
+    sol = s2.solve(mode={"ground": "slip"})
+    assert all(fi.name != "energy" for fi in first_integrals(sol.regime(0) and _one(sol), {}))
+
+
+def _one(sol):
+    """A single-regime view of a two-regime solution (the first regime)."""
+    import dataclasses
+    return dataclasses.replace(sol, regimes=(sol.regimes[0],))

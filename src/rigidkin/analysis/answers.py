@@ -18,7 +18,7 @@ from ..errors import InputError, RigidkinError
 from ..printing import text
 from .equilibrium import equilibria
 from .events import _num, condition_expression, event, extreme, threshold
-from .integrals import along_motion, energy_integral
+from .integrals import along_motion, energy_integral, first_integrals
 from .phases import Phase, run_phases
 from .questions import KINDS, Answer, Question
 
@@ -137,9 +137,19 @@ def _state_text(start, q):
 
 def _integral(system, question, f, context):
     sol = _solution(system, f)
-    integral = energy_integral(sol, _start(f, context))
-    lhs, rhs = integral.equation
-    return Answer(question, sp.Eq(lhs, rhs), f"{text(lhs)} = {text(rhs)}")
+    start = _start(f, context)
+    if len(sol.coordinates) == 1:
+        try:
+            integral = energy_integral(sol, start)
+            lhs, rhs = integral.equation
+            return Answer(question, sp.Eq(lhs, rhs), f"{text(lhs)} = {text(rhs)} (energy integral)")
+        except RigidkinError:
+            pass
+    found = first_integrals(sol, start)
+    if not found:
+        return Answer(question, (), "no first integral: energy is not conserved and no coordinate is cyclic")
+    lines = [f"{fi.name}: {text(fi.expression)} = {text(fi.value)}" for fi in found]
+    return Answer(question, tuple(found), "; ".join(lines), details={"integrals": found})
 
 
 def _event(system, question, f, context):

@@ -103,3 +103,51 @@ def along_motion(solution, expr, integral: EnergyIntegral) -> sp.Expr:
                                 hint="Give the direction of motion.")
         e = e.xreplace({us: sp.sqrt(integral.rate_squared)})
     return algebra.readable(sp.simplify(e))
+
+
+@dataclass(frozen=True)
+class FirstIntegral:
+    """A quantity constant along every motion of the mode: ``expression`` = ``value`` (at ``start``)."""
+
+    name: str
+    expression: sp.Expr
+    value: sp.Expr | None
+    why: str
+
+
+def _rate_along(solution, regime, expr) -> sp.Expr:
+    """d/dt of an expression of the state, with the accelerations of the solution substituted."""
+    d = sp.diff(expr, t)
+    for qd2, acc in regime.accelerations.items():
+        d = d.xreplace({qd2.diff(t, 2): acc})
+    return d
+
+
+def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
+    """Energy (when conserved) and the generalised momentum of each cyclic coordinate.
+
+    Each candidate is kept only if its rate along the motion (accelerations substituted) vanishes
+    identically, so a dissipative system simply has no energy integral in the list.
+    """
+    from ..laws.energy import kinetic_energy, potential_energy
+    from .phases import _at, full_state
+
+    regime = single_regime(solution)
+    setup = solution.setup
+    state = full_state(solution.system, dict(start or {}))
+    out = []
+    T, U = kinetic_energy(setup), potential_energy(setup)
+    E = algebra.readable(T + U)
+    if algebra.is_zero(_rate_along(solution, regime, E)):
+        out.append(FirstIntegral("energy", E, algebra.readable(_at(E, state)),
+                                 "T + U is constant: no non-conservative load does work in this mode"))
+    M = regime.mass_matrix
+    for j, q in enumerate(solution.coordinates):
+        p = algebra.readable(sum((M[j, k] * qk.diff(t) for k, qk in enumerate(solution.coordinates)),
+                                 sp.Integer(0)))
+        if p == 0 or not algebra.is_zero(_rate_along(solution, regime, p)):
+            continue
+        out.append(FirstIntegral(f"momentum conjugate to {q.func.__name__}", p, algebra.readable(_at(p, state)),
+                                 f"{q.func.__name__} is cyclic: it appears neither in the kinetic energy nor in "
+                                 "the generalised forces"))
+    return out
