@@ -11,6 +11,17 @@ import numpy as np
 _UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s"), "other": ("", "1/s")}
 
 
+_GREEK = dict(zip(("alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda",
+                   "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega"),
+                  "αβγδεζηθικλμνξπρστυφχψω"))
+
+
+def greek(name: str) -> str:
+    """``theta`` → θ, ``phi_1`` → φ_1 (names as written by hand)."""
+    head, sep, tail = name.partition("_")
+    return _GREEK.get(head, head) + sep + tail
+
+
 def _label(name: str, unit: str) -> str:
     return f"{name} [{unit}]" if unit else name
 
@@ -28,13 +39,13 @@ def plot_result(result, path=None, title: str | None = None):
     names = result.layout.names
     seg_idx = result.segment
 
-    def lines(ax, series, ylabel):
+    def lines(ax, series, ylabel, styles=None):
         cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
         for j, (lab, arr) in enumerate(series):
-            color = cycle[j % len(cycle)]
+            style = (styles or {}).get(lab, {"color": cycle[j % len(cycle)], "lw": 1.4})
             for s in np.unique(seg_idx):           # one line per segment: no line across a jump
                 m = seg_idx == s
-                ax.plot(t[m], arr[m], color=color, lw=1.4, label=lab if s == seg_idx[0] else None)
+                ax.plot(t[m], arr[m], label=lab if s == seg_idx[0] else None, **style)
         ax.set_ylabel(ylabel)
         if series:
             ax.legend(loc="upper left", fontsize=8, framealpha=0.85)
@@ -43,16 +54,28 @@ def plot_result(result, path=None, title: str | None = None):
     q = result.q
     r = result.rates
     kinds = result.kinds
-    lines(axes[0], [(_label(n, _UNITS.get(kinds.get(n, "other"), ("", ""))[0]), q[n]) for n in names],
+    lines(axes[0], [(_label(greek(n), _UNITS.get(kinds.get(n, "other"), ("", ""))[0]), q[n]) for n in names],
           "coordinates")
-    lines(axes[1], [(_label(f"d{n}/dt", _UNITS.get(kinds.get(n, "other"), ("", ""))[1]), r[f"dot({n})"])
+    lines(axes[1], [(_label(f"d{greek(n)}/dt", _UNITS.get(kinds.get(n, "other"), ("", ""))[1]), r[f"dot({n})"])
                     for n in names], "rates")
-    lines(axes[2], [(k, v) for k, v in result.reactions.items()], "reactions [N, N·m]")
+    lines(axes[2], [(greek(k), v) for k, v in result.reactions.items()], "reactions [N, N·m]")
+    for k, v in result.limits.items():        # ± the friction limit µN, dashed
+        for s in np.unique(seg_idx):
+            m = seg_idx == s
+            for sgn in (1, -1):
+                axes[2].plot(t[m], sgn * v[m], color="0.45", lw=0.9, ls="--",
+                             label=f"±µ{k[3:]} (friction limit)" if (s == seg_idx[0] and sgn > 0)
+                             else None)
+    if result.limits:
+        axes[2].legend(loc="upper left", fontsize=8, framealpha=0.85)
     E0 = result.energy["E"][0]
-    lines(axes[3], [("T kinetic", result.energy["T"]), ("U potential", result.energy["U"]),
-                    ("E = T + U", result.energy["E"])]
-          + ([("E0 + W (work of non-conservative loads)", E0 + result.energy["W"])]
-             if np.any(result.energy["W"] != 0) else []), "energy [J]")
+    e_series = [("T kinetic", result.energy["T"]), ("U potential", result.energy["U"]),
+                ("E = T + U", result.energy["E"])]
+    if np.any(result.energy["W"] != 0):
+        e_series.append(("E0 + W (work done on the system)", E0 + result.energy["W"]))
+    lines(axes[3], e_series, "energy [J]",
+          {"E = T + U": {"color": "black", "lw": 2.2, "ls": "--"},
+           "E0 + W (work done on the system)": {"color": "tab:red", "lw": 1.0, "ls": "-."}})
     axes[3].set_xlabel("t [s]")
     if not result.reactions:
         axes[2].text(0.5, 0.5, "no reactions", transform=axes[2].transAxes, ha="center", va="center")
@@ -70,11 +93,16 @@ def plot_result(result, path=None, title: str | None = None):
     for i, e in enumerate(result.events, 1):
         for ax in axes:
             ax.axvline(e.t, color="0.25", ls=":", lw=1.0)
-        axes[0].annotate(str(i), (e.t, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 3),
+        axes[0].annotate(f"[{i}]", (e.t, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 3),
                          textcoords="offset points", ha="center", va="bottom", fontsize=9, color="0.15")
+        if len(result.events) <= 6:        # the event's name along its line, inside the top panel
+            axes[0].annotate(e.name, (e.t, 0.97), xycoords=("data", "axes fraction"), xytext=(3, 0),
+                             textcoords="offset points", rotation=90, ha="left", va="top", fontsize=8,
+                             color="0.2", bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
+                                                "alpha": 0.7})
     head = title or f"{result.title} — simulated to t = {result.t_final:.4g} s"
     fig.suptitle(head, fontsize=12)
-    notes = [f"[{i}] t = {e.t:.6g} s: {e.name}" for i, e in enumerate(result.events, 1)]
+    notes = [f"[{i}] t = {e.t:.6g} s: {e.name}" for i, e in enumerate(result.events, 1)] or ["no events"]
     modes = [f"mode {j + 1} (band {['grey', 'blue', 'orange', 'green', 'violet', 'yellow'][j % 6]}): {d}"
              for j, d in enumerate(desc)]
     foot = modes + notes[:12] + ([f"… and {len(notes) - 12} more events"] if len(notes) > 12 else [])

@@ -50,7 +50,7 @@ def describe_mode(system, mode: dict) -> str:
         if st == OPEN:
             words.append(f"{name} open")
         elif st == STICK:
-            words.append(f"{name} rolling" if c.friction == ROLLING else f"{name} sticking")
+            words.append(f"{name} rolling" if c.radius != 0 else f"{name} sticking")
         elif c.friction == SMOOTH:
             words.append(f"{name} closed")
         else:
@@ -94,11 +94,12 @@ class ModeModel:
 
     @property
     def description(self) -> str:
-        text = describe_mode(self.system, self.mode)
-        reg = self.regime
-        if reg.conditions:
-            text += " (" + reg.describe() + ")"
-        return text
+        from ..printing import text as show
+
+        words = describe_mode(self.system, self.mode)
+        conds = [f"{show(c.expr)} {c.relation.replace('>=', '≥').replace('<=', '≤')} 0"
+                 for c in self.regime.conditions]
+        return words + (f" ({', '.join(conds)})" if conds else "")
 
     def aux(self, t_: float, y: np.ndarray, p) -> list:
         """Reactions, watch values, constraint residuals, T, U and friction forces at one state."""
@@ -271,6 +272,11 @@ class Hybrid:
                 if sc is not None and sc.symbol in signs:
                     friction_names.append(str(c.F))
                     fexprs.append(-c.friction.mu * react.get(str(c.N), sp.Integer(0)) * signs[sc.symbol])
+        for name, c in self.contacts.items():      # the friction limit µN of every Coulomb contact
+            if isinstance(c.friction, Coulomb):
+                friction_names.append(f"mu*{c.N}")
+                fexprs.append(c.friction.mu * react.get(str(c.N), sp.Integer(0)) if mode[name] != OPEN
+                              else sp.Integer(0))
         names = list(react)
         exprs = [*(react[n] for n in names), *wexprs, *rexprs, T, U, *fexprs]
         aux_fn = compile_functions(lay.arguments(), [lay.to_plain(e) for e in exprs])

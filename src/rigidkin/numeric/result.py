@@ -88,6 +88,7 @@ class SimulationResult:
     energy_balance: str                # "conserved" or "with the work of non-conservative loads"
     warnings: list = field(default_factory=list)
     kinds: dict = field(default_factory=dict)
+    limits: dict = field(default_factory=dict)   # "mu*N": the friction limit µN of each Coulomb contact
 
     # access ------------------------------------------------------------------------------------
     @property
@@ -199,7 +200,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
     n = layout.n
     t_start, t_end = segments[0].t0, segments[-1].t1
     grid = np.linspace(t_start, t_end, max(2, int(n_points)))
-    ts, ys, segs, react_parts, res_parts, T_parts, U_parts = [], [], [], [], [], [], []
+    ts, ys, segs, react_parts, res_parts, T_parts, U_parts, limit_parts = [], [], [], [], [], [], [], []
     for i, seg in enumerate(segments):
         last = i == len(segments) - 1
         inside = grid[(grid > seg.t0) & ((grid < seg.t1) | (last & (grid <= seg.t1)))]
@@ -210,8 +211,9 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
         ys.append(Y)
         segs.append(np.full(len(times), i))
         forces = dict(vals["reactions"])
-        forces.update(vals["frictions"])
+        forces.update({k: v for k, v in vals["frictions"].items() if not k.startswith("mu*")})
         react_parts.append(forces)
+        limit_parts.append({k: v for k, v in vals["frictions"].items() if k.startswith("mu*")})
         res_parts.append(vals["residuals"])
         T_parts.append(vals["T"])
         U_parts.append(vals["U"])
@@ -222,6 +224,11 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
         names += [k for k in part if k not in names]
     reactions = {k: np.concatenate([part.get(k, np.zeros(len(tt))) for part, tt in zip(react_parts, ts)])
                  for k in names}
+    lnames: list[str] = []
+    for part in limit_parts:
+        lnames += [k for k in part if k not in lnames]
+    limits = {k: np.concatenate([part.get(k, np.zeros(len(tt))) for part, tt in zip(limit_parts, ts)])
+              for k in lnames}
     residuals: dict = {}
     for part in res_parts:
         for k, v in part.items():
@@ -251,4 +258,4 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
     return SimulationResult(system.name, system.title, layout, t, Y[:2 * n].T.copy(), np.concatenate(segs),
                             reactions, {"T": T, "U": U, "E": E, "W": W}, residuals, list(events),
                             list(segments), status, message, drift, balance, warns,
-                            {c.name: c.kind for c in system.coordinate_info.values()})
+                            {c.name: c.kind for c in system.coordinate_info.values()}, limits)

@@ -244,8 +244,8 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
                                   + _state_text(lay, sol.y[:, -1]) + ".", where=system.name,
                                   hint="The motion may reach a singular configuration; try method='Radau' or "
                                        "looser tolerances.")
-        segments.append(Segment(t_now, float(sol.t[-1]), dict(mode_), k, model.description, ph, sol.sol, model,
-                                p, rhs.calls))
+        desc = model.description if len(phases) == 1 else f"phase {ph + 1}: {model.description}"
+        segments.append(Segment(t_now, float(sol.t[-1]), dict(mode_), k, desc, ph, sol.sol, model, p, rhs.calls))
         t_prev, t_now = t_now, float(sol.t[-1])
         y = np.array(sol.y[:, -1], dtype=float)
         if sol.status == 0:

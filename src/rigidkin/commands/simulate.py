@@ -1,0 +1,136 @@
+"""``rigidkin simulate PROBLEM --t-end T``: simulate through contact and friction modes.
+
+``--set NAME=VALUE`` gives parameter values (``--set "beta=30 deg"``; a bare number is SI),
+``--initial NAME=VALUE`` initial coordinates and rates (``--initial theta=1e-6 "dot(theta)=0"``),
+``--mode CONTACT=open|slip|stick`` the starting state of a contact, ``--restitution E`` (or
+``CONTACT=E``) the coefficient of restitution of impacts.  ``--plot``, ``--csv`` write the figure
+and the histories; ``--json`` prints the events, the final state and the energy drift.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+import warnings
+
+from ..errors import InputError
+
+
+def register(sub) -> None:
+    p = sub.add_parser("simulate", help="simulate the motion, switching contact and friction modes exactly",
+                       description="Simulate a problem through its contact modes (contacts opening, impacts, "
+                                   "rolling and slipping), with events located exactly.")
+    p.add_argument("problem", help="a problem file or a bundled example name")
+    p.add_argument("--t-end", type=float, required=True, metavar="T", help="end time [s]")
+    p.add_argument("--t-start", type=float, default=0.0, metavar="T0", help="start time [s] (default 0)")
+    p.add_argument("--set", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
+                   help="parameter values; units allowed: --set \"beta=30 deg\" m=2")
+    p.add_argument("--initial", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
+                   help="initial coordinates and rates: --initial theta=1e-6 \"dot(theta)=0\"")
+    p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
+                   help="starting state of a contact: open, slip or stick")
+    p.add_argument("--restitution", nargs="+", action="extend", default=[], metavar="E|CONTACT=E",
+                   help="coefficient of restitution of impacts, for all contacts or per contact (default 0)")
+    p.add_argument("--plot", metavar="PNG", help="write a figure of the histories")
+    p.add_argument("--csv", metavar="CSV", help="write the histories as CSV")
+    p.add_argument("--json", action="store_true", help="print events, final state and energy drift as JSON")
+    p.add_argument("--points", type=int, default=1001, help="samples in the histories (default 1001)")
+    p.add_argument("--rtol", type=float, default=1e-11, help="relative tolerance (default 1e-11)")
+    p.add_argument("--atol", type=float, default=1e-13, help="absolute tolerance (default 1e-13)")
+    p.add_argument("--method", default="DOP853", help="solve_ivp method: DOP853 (default) or Radau, BDF, …")
+    p.set_defaults(func=run)
+
+
+def _pairs(items: list[str], what: str) -> dict:
+    out = {}
+    for item in items:
+        if "=" not in item:
+            raise InputError(f"'{item}' is not NAME=VALUE.", where=what,
+                             hint=f"Write {what} NAME=VALUE, e.g. {what} theta=0.1 (quote values with spaces).")
+        name, value = item.split("=", 1)
+        name, value = name.strip(), value.strip()
+        if not name or not value:
+            raise InputError(f"'{item}' has an empty name or value.", where=what)
+        out[name] = value
+    return out
+
+
+def _restitution(items: list[str]):
+    if not items:
+        return 0.0
+    if len(items) == 1 and "=" not in items[0]:
+        return _number(items[0], "--restitution")
+    return {k: _number(v, "--restitution") for k, v in _pairs(items, "--restitution").items()}
+
+
+def _number(text: str, where: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise InputError(f"'{text}' is not a number.", where=where) from None
+
+
+class _Progress:
+    """A rich progress bar on stderr, shown only when a run takes longer than a second."""
+
+    def __init__(self, enabled: bool):
+        self.enabled = enabled
+        self.start = time.monotonic()
+        self.bar = None
+        self.task = None
+
+    def __call__(self, t_: float, t_end: float) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            if time.monotonic() - self.start < 1.0:
+                return
+            from rich.console import Console
+            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+            self.bar = Progress(TextColumn("simulating"), BarColumn(), TextColumn("t = {task.fields[t]:.4g} s"),
+                                TimeElapsedColumn(), console=Console(stderr=True), transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task("sim", total=t_end, t=t_)
+        self.bar.update(self.task, completed=t_, t=t_)
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.stop()
+
+
+def run(args) -> int:
+    from ..numeric import simulate
+    from .common import load_system
+
+    system, _ = load_system(args.problem)
+    params = _pairs(args.set, "--set")
+    initial = _pairs(args.initial, "--initial")
+    mode = _pairs(args.mode, "--mode")
+    if args.points < 2:
+        raise InputError("--points must be at least 2.", where="--points")
+    progress = _Progress(sys.stderr.isatty() and not args.json)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", RuntimeWarning)
+        try:
+            result = simulate(system, (args.t_start, args.t_end), initial_state=initial, params=params, mode=mode,
+                              restitution=_restitution(args.restitution), method=args.method, rtol=args.rtol,
+                              atol=args.atol, n_points=args.points, progress=progress)
+        finally:
+            progress.close()
+    del caught
+    if args.csv:
+        result.to_csv(args.csv)
+    if args.plot:
+        result.plot(args.plot)
+    if args.json:
+        print(result.to_json())
+    else:
+        print(result)
+        print("Final state: " + ", ".join(f"{k} = {v:.10g}" for k, v in result.final_state.items()))
+        for path, what in ((args.plot, "figure"), (args.csv, "histories")):
+            if path:
+                print(f"Wrote the {what} to {path}")
+    for w in result.warnings:
+        print(f"rigidkin: warning: {w}", file=sys.stderr)
+    return 0
