@@ -151,8 +151,10 @@ class _Parser:
                 depth -= 1
         if deepest > MAX_NESTING:
             raise self.fail(f"brackets are nested {deepest} deep (at most {MAX_NESTING})", hint=None)
+        stripped = source.strip()
+        self.offset += len(source) - len(source.lstrip())
         try:
-            tree = ast.parse(source.strip(), mode="eval")
+            tree = ast.parse(stripped, mode="eval")
         except SyntaxError as exc:
             col = f" at column {exc.offset + self.offset}" if exc.offset else ""
             raise InputError(f"the expression {_snippet(self.text)} is not valid syntax{col} ({exc.msg}).",
@@ -168,7 +170,8 @@ class _Parser:
             if count > MAX_NODES:
                 raise self.fail(f"it has more than {MAX_NODES} parts; split it or simplify it", hint=None)
             if d > MAX_DEPTH:
-                raise self.fail(f"it is nested more than {MAX_DEPTH} levels deep", hint=None)
+                raise self.fail(f"it is nested more than {MAX_DEPTH} levels deep (or chains more than {MAX_DEPTH} "
+                                "operations)", hint="Split it with intermediate parameters or simplify it.")
             stack.extend((c, d + 1) for c in ast.iter_child_nodes(node))
         return tree.body
 
