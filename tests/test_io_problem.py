@@ -1,0 +1,159 @@
+"""Problem files: each bundled card's TOML builds the same model as its Python example (names, values,
+senses, frames, points, bodies, constraints, loads), and its [ask] becomes typed Question objects."""
+
+import pytest
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from rigidkin.examples import HERE, build, names
+from rigidkin.io.expressions import slip
+from rigidkin.io.problem import load_problem
+from rigidkin.model.constraints import Coulomb
+
+t = dynamicsymbols._t
+CARDS = ["boulder-push", "collar-force", "collar-rod", "disk-in-track", "disk-spring-incline", "ladder",
+         "paper-pull", "rod-impulse", "slip-to-roll", "sphere-on-sphere"]
+
+
+def test_every_card_has_a_problem_file():
+    for card in CARDS:
+        assert card in names()
+        assert (HERE / f"{card}.toml").exists(), card
+        assert (HERE / f"{card.replace('-', '_')}.py").exists(), card
+
+
+def _same(a, b) -> bool:
+    return sp.simplify(sp.sympify(a) - sp.sympify(b)) == 0
+
+
+def _vec_same(u, frame_u, v, frame_v) -> bool:
+    """Two vectors of two systems: equal components in each system's inertial frame."""
+    return all(_same(a, b) for a, b in zip(u.to_matrix(frame_u), v.to_matrix(frame_v)))
+
+
+@pytest.mark.parametrize("card", CARDS)
+def test_file_builds_the_python_model(card):
+    s, spec = load_problem(HERE / f"{card}.toml")
+    p = build(card)
+    assert (s.name, s.title, s.statement) == (p.name, p.title, p.statement)
+    assert spec.name == card and spec.title == p.title
+    # parameters: names, units, values in SI, descriptions, assumptions
+    assert list(s.parameter_info) == list(p.parameter_info)
+    for name, a in s.parameter_info.items():
+        b = p.parameter_info[name]
+        assert (a.symbol, a.unit, a.description, a.dimension) == (b.symbol, b.unit, b.description, b.dimension)
+        assert a.value == pytest.approx(b.value, rel=1e-15), name
+    # coordinates: order (the first are independent), senses, kinds, initial state
+    assert s.coordinates == p.coordinates
+    for name, a in s.coordinate_info.items():
+        b = p.coordinate_info[name]
+        assert (a.sense, a.kind, a.dimension, a.initial, a.rate) == (b.sense, b.kind, b.dimension, b.initial, b.rate)
+    # frames: basis names and orientation
+    assert list(s.frames) == list(p.frames)
+    for name, fa in s.frames.items():
+        fb = p.frames[name]
+        assert fa.basis == fb.basis and fa.description == fb.description
+        if fa.parent is not None:
+            assert fa.parent.name == fb.parent.name
+            assert all(_same(x, y) for x, y in zip(fa.ref.dcm(s.inertial.ref), fb.ref.dcm(p.inertial.ref)))
+    # points: where they are and which body they are fixed in
+    assert set(s.points) == set(p.points)
+    for name, pa in s.points.items():
+        pb = p.points[name]
+        assert _vec_same(pa.position(), s.inertial.ref, pb.position(), p.inertial.ref), name
+        assert (pa.body.name if pa.body else None) == (pb.body.name if pb.body else None), name
+    # bodies
+    assert list(s.bodies) == list(p.bodies)
+    for name, ba in s.bodies.items():
+        bb = p.bodies[name]
+        assert type(ba.shape) is type(bb.shape) and ba.shape == bb.shape
+        assert (ba.frame.name, ba.reference.name, ba.centre.name) == (bb.frame.name, bb.reference.name, bb.centre.name)
+    # constraints and loads: kinds, reactions, friction models
+    assert list(s.constraints) == list(p.constraints)
+    for name, ca in s.constraints.items():
+        cb = p.constraints[name]
+        assert type(ca) is type(cb) and ca.reactions() == cb.reactions()
+        fa, fb = getattr(ca, "friction", None), getattr(cb, "friction", None)
+        assert (fa == fb) if not isinstance(fb, Coulomb) else _same(fa.mu, fb.mu)
+    assert list(s.loads) == list(p.loads)
+    for name, la in s.loads.items():
+        assert type(la) is type(p.loads[name])
+
+
+def test_questions_are_typed():
+    s, spec = load_problem(HERE / "ladder.toml")
+    th = s.coordinates[0]
+    assert spec.eom is True and spec.reactions == ("N_A", "N_B")
+    q = {q.name: q for q in spec.questions}
+    ev = q["leaves_wall"]
+    assert ev.kind == "event" and ev.fields["when"] == sp.Eq(sp.Symbol("N_A", real=True), 0)
+    assert ev.fields["start"] == {th: 0, th.diff(t): 0}
+    assert "ladder.toml, line" in ev.where and "ask.question[1]" in ev.where
+    assert q["wall_reaction"].fields["reaction"] == "N_A"
+
+    s, spec = load_problem(HERE / "slip-to-roll.toml")
+    (ph,) = spec.questions
+    phases = ph.fields["phase"]
+    assert [p["name"] for p in phases] == ["frictionless", "sliding", "rolling"]
+    mu, d = s.parameters["mu"], s.parameters["d"]
+    x = s.coordinates[0]
+    assert phases[0]["set"] == {mu: 0} and phases[0]["until"] == sp.Eq(x, d)
+    assert phases[1]["until"] == sp.Eq(slip(sp.Symbol("ground")), 0)
+    assert phases[2]["mode"] == {"ground": "stick"} and phases[2]["until"] is None
+
+    s, spec = load_problem(HERE / "rod-impulse.toml")
+    blow, largest = spec.questions
+    assert largest.fields["coordinate"] == s.coordinates[0] and largest.fields["after"] == "after_blow"
+
+    s, spec = load_problem(HERE / "paper-pull.toml")
+    (iv,) = spec.questions
+    x, phi = s.coordinates
+    r, V = s.parameters["r"], s.parameters["V"]
+    assert iv.fields["duration"] == s.parameters["dt"]
+    assert iv.fields["regime"] == sp.StrictLessThan(x.diff(t) + r * phi.diff(t), V)
+
+    s, spec = load_problem(HERE / "disk-in-track.toml")
+    thr = spec.questions[1]
+    N = sp.Symbol("N", real=True)
+    assert thr.kind == "threshold" and thr.fields["holds"] == sp.GreaterThan(N, 0)
+
+
+def test_units_are_converted(tmp_path):
+    text = (HERE / "disk-spring-incline.toml").read_text()
+    text = text.replace('value = "20 deg"', 'value = 20').replace('unit = "rad", description = "inclination',
+                                                                  'unit = "deg", description = "inclination')
+    text = text.replace('L0 = { unit = "m"', 'L0 = { unit = "cm"').replace("value = 0.5 }", "value = 50 }")
+    f = tmp_path / "p.toml"
+    f.write_text(text)
+    s, _ = load_problem(f)
+    assert s.parameter_info["beta"].value == pytest.approx(20 * 3.141592653589793 / 180)
+    assert s.parameter_info["L0"].value == pytest.approx(0.5)
+    assert s.parameter_info["L0"].dimension == build("disk-spring-incline").parameter_info["L0"].dimension
+
+
+def test_minimal_pendulum_matches_the_closed_form(tmp_path):
+    f = tmp_path / "pendulum.toml"
+    f.write_text('''
+title = "Pendulum"
+[parameters]
+m = { unit = "kg" }
+l = { unit = "m" }
+g = { unit = "m/s^2" }
+[coordinates]
+theta = { sense = "from the downward vertical, counter-clockwise" }
+[frames]
+R = { angle = "theta" }
+[points]
+G = { offset = "-l/2*R.y" }
+[bodies]
+rod = { shape = "rod", mass = "m", length = "l", axis = "y", frame = "R", at = "G" }
+[constraints]
+O = { type = "pin", point = "O", body_a = "rod" }
+[loads]
+gravity = { type = "gravity", g = "g" }
+''')
+    s, spec = load_problem(f)
+    th = s.coordinates[0]
+    g, l = s.parameters["g"], s.parameters["l"]
+    assert spec.name == "pendulum" and spec.questions == ()
+    assert _same(s.solve().accelerations[th], -3 * g * sp.sin(th) / (2 * l))
