@@ -162,7 +162,9 @@ def _event(system, question, f, context):
              for k, v in ev.configuration.items()]
     end = dict(ev.configuration)
     end[q.diff(t)] = ev.rate
-    return Answer(question, ev.value, ", ".join(parts) + f" ({text(ev.condition)} = 0)", exact=ev.exact,
+    when = f["when"]
+    cond = text(when) if isinstance(when, sp.Eq) else f"{text(when)} = 0"
+    return Answer(question, ev.value, ", ".join(parts) + f" (where {cond})", exact=ev.exact,
                   tolerance=ev.tolerance, note="; ".join(ev.notes),
                   details={"configuration": ev.configuration, "rate": ev.rate, "end_state": end})
 

@@ -72,6 +72,8 @@ class System:
         self.frames["F"] = self.inertial
         self.origin = Point("O", description="fixed origin")
         self.points["O"] = self.origin
+        self._names["frame:F"] = "the inertial frame F"
+        self._names["point:O"] = "the fixed origin O"
 
     # names ---------------------------------------------------------------------------------------
     def _claim(self, name: str, kind: str, namespace: str = "symbol") -> None:
@@ -325,6 +327,25 @@ class System:
         con = C.Contact(name, body=b, centre=c, radius=sp.sympify(radius), surface=surface, friction=fr,
                         unilateral=unilateral, normal_name=normal_name, friction_name=friction_name,
                         description=description)
+        for sym in con.reactions():
+            self._claim(sym.name, "reaction")
+        return self._add_constraint(con)
+
+    def disk_contact(self, name: str, body, surface, axis: Vector, radius, centre: Point | str | None = None,
+                     friction="smooth", unilateral: bool = True, normal_name: str | None = None,
+                     friction_name: str | None = None, description: str = ""):
+        """A thin disk (wheel, coin) of ``radius`` and unit ``axis`` (fixed in ``body``) touching a plane
+        at its rim, in 3D: see :mod:`rigidkin.model.rolling3d`."""
+        from .rolling3d import DiskContact
+
+        self._claim(name, "constraint", "constraint")
+        where = f"contact {name}"
+        b = self._check_body(body, where)
+        c = self._check_point(centre, where) if centre is not None else b.centre
+        con = DiskContact(name, body=b, centre=c, radius=sp.sympify(radius), surface=surface,
+                          friction=_friction(friction, where), unilateral=unilateral, normal_name=normal_name,
+                          friction_name=friction_name, description=description,
+                          axis=self._check_vector(axis, where))
         for sym in con.reactions():
             self._claim(sym.name, "reaction")
         return self._add_constraint(con)

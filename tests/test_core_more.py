@@ -1,0 +1,121 @@
+"""Problems beyond the cards, each against an independent derivation written here."""
+
+import pytest
+import sympy as sp
+from helpers import solve_accels, values_match
+from sympy import cos, pi, sin, sqrt
+from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
+
+import rigidkin as rk
+from rigidkin.analysis.equilibrium import equilibria
+
+t = rk.t
+
+
+def test_rocking_half_disk_off_centre_rolling():
+    """A semicircular disk rocking without slip on a floor: profile centre O is not the mass centre."""
+    s = rk.System("rocking half-disk")
+    m, r, g = s.parameter("m", "kg", value=1), s.parameter("r", "m", value=0.3), s.parameter("g", "m/s^2", value=9.81)
+    th = s.coordinate("theta", "rotation of the disk, counter-clockwise, zero with the flat face up")
+    x = s.coordinate("x", "position of the centre O of the flat face along Ex", kind="length")
+    F = s.inertial
+    B = s.frame("B", angle=th)
+    with pytest.raises(rk.ModelError, match="already used by the fixed origin"):
+        s.point("O", offset=x * F.x)
+    O = s.point("Q", offset=x * F.x + r * F.y)
+    disk = s.body("disk", rk.shapes.SemicircularDisk(m, r, axis="z", toward="-y"), frame=B, at=O)
+    s.contact("P", disk, s.line(s.origin, F.y), centre=O, radius=r, friction="rolling")
+    s.gravity(g)
+    sol = s.solve()
+    assert sol.coordinates == (th,)
+    # rolling: x = −r θ
+    assert sp.simplify(sol.relations[x] + r * th) == 0
+    (eq,) = [e for e in equilibria(sol) if e.configuration[th] == 0]
+    d = 4 * r / (3 * pi)
+    # independent: small rocking about the contact point, I_P = I_G + m (r − d)², restoring m g d θ
+    IG = m * r**2 / 2 - m * d**2
+    wn_expected = sqrt(g * d / ((IG + m * (r - d) ** 2) / m))
+    assert sp.simplify(eq.natural_frequencies[0] - wn_expected) == 0
+    # the full nonlinear EOM against Lagrange: G at O + d(sin θ, −cos θ), O at (−rθ, r)
+    q = dynamicsymbols("q")
+    xg, yg = -r * q + d * sin(q), r - d * cos(q)
+    L = m * (xg.diff(t) ** 2 + yg.diff(t) ** 2) / 2 + IG * q.diff(t) ** 2 / 2 - m * g * yg
+    LM = LagrangesMethod(L, [q])
+    LM.form_lagranges_equations()
+    acc = LM.rhs()[1].subs({q.diff(t): th.diff(t)}).subs(q, th)
+    assert values_match(sol.accelerations[th], acc, [th])
+
+
+def test_disk_rolling_on_a_cart_pushed_by_a_force():
+    """A disk rolls without slip on a cart (a moving surface) that a force P pushes along a smooth floor."""
+    s = rk.System("disk on cart")
+    m, M, r, P = (s.parameter(n, u) for n, u in (("m", "kg"), ("M", "kg"), ("r", "m"), ("P", "N")))
+    g = s.parameter("g", "m/s^2")
+    X = s.coordinate("X", "cart position along Ex", kind="length")
+    x = s.coordinate("x", "disk centre position along Ex", kind="length")
+    phi = s.coordinate("phi", "disk rotation, clockwise")
+    F = s.inertial
+    Ccart = s.point("K", offset=X * F.x)
+    cart = s.body("cart", rk.shapes.PointMass(M), frame=F, at=Ccart)
+    s.collar("floor", cart, along=F.x)
+    C = s.point("C", offset=x * F.x + r * F.y)
+    D = s.frame("D", angle=-phi)
+    disk = s.body("disk", rk.shapes.Disk(m, r), frame=D, at=C)
+    top = s.line(Ccart, F.y, body=cart, name="cart top")
+    s.contact("P", disk, top, radius=r, friction="rolling")
+    s.force("push", Ccart, P * F.x)
+    s.gravity(g)
+    sol = s.solve()
+    assert set(sol.coordinates) == {X, x}
+    # independent: Lagrange with the rolling relation r φ̇ = ẋ − Ẋ built in
+    q1, q2 = dynamicsymbols("q1 q2")
+    T = M * q1.diff(t) ** 2 / 2 + m * q2.diff(t) ** 2 / 2 + m * r**2 / 4 * ((q2.diff(t) - q1.diff(t)) / r) ** 2
+    from sympy.physics.mechanics import Point, ReferenceFrame
+    N = ReferenceFrame("N")
+    K = Point("K")
+    K.set_vel(N, q1.diff(t) * N.x)
+    LM = LagrangesMethod(T, [q1, q2], forcelist=[(K, P * N.x)], frame=N)
+    LM.form_lagranges_equations()
+    rhs = LM.rhs()
+    on = {q1.diff(t): X.diff(t), q2.diff(t): x.diff(t)}
+    assert values_match(sol.accelerations[X], rhs[2].subs(on), [X, x])
+    assert values_match(sol.accelerations[x], rhs[3].subs(on), [X, x])
+    # by hand: the disk's centre accelerates at P/(3M + m), the cart at 3P/(3M + m)
+    assert sp.simplify(sol.accelerations[x] - P / (3 * M + m)) == 0
+
+
+@pytest.mark.parametrize("law, expected_force", [("lin", lambda c, v: -c * v), ("cubic", lambda c, v: -c * v**3)])
+def test_block_with_damper_any_force_law(law, expected_force):
+    s = rk.System("damped block")
+    m, k, c, g, beta = (s.parameter(n) for n in ("m", "k", "c", "g", "beta"))
+    x = s.coordinate("x", "down the incline from the spring's natural length", kind="length")
+    I = s.frame("I", angle=-beta)
+    C = s.point("C", offset=x * I.x)
+    block = s.body("block", rk.shapes.PointMass(m), frame=I, at=C)
+    s.collar("incline", block, along=I.x)
+    s.spring("spring", C, s.origin, k)
+    v = rk.v
+    s.damper("damper", C, -c * v if law == "lin" else -c * v**3, along=I.x)
+    s.gravity(g)
+    sol = s.solve()
+    card = m * x.diff(t, 2) + k * x - m * g * sin(beta) - expected_force(c, x.diff(t))
+    assert values_match(sol.accelerations[x], solve_accels([card], [x])[x], [x])
+
+
+def test_friction_against_moving_collar_regimes():
+    """A collar with Coulomb friction on a track: |N| depends on the sign of N (bilateral) and of the slip."""
+    s = rk.System("collar with friction")
+    m, mu, g, P = (s.parameter(n) for n in ("m", "mu", "g", "P"))
+    x = s.coordinate("x", "along the track", kind="length")
+    F = s.inertial
+    C = s.point("C", offset=x * F.x)
+    b = s.body("collar", rk.shapes.PointMass(m), frame=F, at=C)
+    s.collar("track", b, along=F.x, friction=mu)
+    s.force("pull", C, P * (F.x + F.y))   # pulls along and upwards
+    s.gravity(g)
+    sol = s.solve()
+    assert len(sol.regimes) == 4
+    # moving +x with N = m g − P > 0: m ẍ = P − µ (m g − P)
+    reg = sol.regime_at({x.diff(t): 1.0, P: 1.0, m: 1.0, g: 9.81, mu: 0.3})
+    a = reg.accelerations[x]
+    assert values_match(a, (P - mu * (m * g - P)) / m, [x], ranges={"P": (0.1, 0.5), "g": (5, 10)})
