@@ -159,9 +159,74 @@ def _first_turning_point(integral, values, direction, q0n) -> float | None:
     return None
 
 
+#: Longest simulated time the numerical event search covers.
+SIMULATION_HORIZON = 30.0
+
+
 def event(solution, when, start: dict | None = None, name: str = "event") -> Event:
-    """The first configuration after ``start`` where ``when`` holds, along a conservative 1-DOF motion."""
-    integral = energy_integral(solution, start)
+    """The first configuration after ``start`` where ``when`` holds.
+
+    Along a conservative one-degree-of-freedom motion this is a root of a function of the coordinate
+    (closed form where sympy finds one); otherwise the motion is simulated and the event located by
+    the integrator's event machinery, with the tolerance stated.
+    """
+    try:
+        integral = energy_integral(solution, start)
+    except RigidkinError as exc:
+        return event_by_simulation(solution, when, start, name, reason=exc.message)
+    return _event_1dof(solution, integral, when, name)
+
+
+def event_by_simulation(solution, when, start: dict | None = None, name: str = "event",
+                        horizon: float = SIMULATION_HORIZON, reason: str = "") -> Event:
+    """Locate the event by simulating from ``start`` (every parameter needs a value)."""
+    from ..numeric.simulate import Phase as SimPhase
+    from ..numeric.simulate import simulate
+    from .phases import full_state
+
+    system = solution.system
+    missing = [p.name for p in system.parameter_info.values() if p.value is None]
+    if missing:
+        raise RigidkinError(f"there is no closed form ({reason.rstrip('.')}), and a numerical search needs "
+                            f"values for the parameters {', '.join(missing)}.",
+                            hint="Give the parameters values in the problem.")
+    state = full_state(system, dict(start or {}))
+    initial = {}
+    for k, v in state.items():
+        key = f"dot({k.args[0].func.__name__})" if isinstance(k, sp.Derivative) else k.func.__name__
+        initial[key] = float(_num(v, numeric_values(solution)))
+    regime = solution.regimes[0]
+    if len(solution.regimes) > 1:
+        regime = solution.regime_at({**state, **{p.symbol: p.value for p in system.parameter_info.values()}})
+    g = condition_expression(solution, when, regime)
+    contact_states = {k: v for k, v in solution.states.items()
+                      if getattr(system.constraints[k], "kind", "") == "contact"}
+    from .phases import _at
+    g_start = _num(_at(g, state), numeric_values(solution))
+    phases = [SimPhase(until=g, name=name), SimPhase()]
+    if abs(g_start) < 1e-12:   # the condition holds at the start (a turning point from rest): step off it
+        phases.insert(0, SimPhase(duration=1e-7, name="_start"))
+    res = simulate(system, horizon, initial, mode=contact_states, phases=phases)
+    hits = [e for e in res.events if e.kind == "phase" and e.name == name]
+    notes = [f"found by simulation ({reason.rstrip('.')}); time located to about 1e-10 s"] if reason else []
+    earlier = [e for e in res.events if e.kind not in ("phase",) and (not hits or e.t < hits[0].t)]
+    q = solution.coordinates[0]
+    if not hits:
+        why = f"not within {horizon:g} s of simulated motion"
+        if earlier:
+            why += f"; first {earlier[0].name} at t = {earlier[0].t:.6g}"
+        return Event(name, g, False, q, notes=tuple(notes + [why]))
+    if earlier:
+        notes.append(f"{earlier[0].name} happens first, at t = {earlier[0].t:.6g}; the event is in the motion "
+                     "that follows")
+    ev = hits[0]
+    config = {c.symbol: sp.Float(ev.state[c.name]) for c in system.coordinate_info.values()}
+    rate = sp.Float(ev.state[f"dot({q.func.__name__})"])
+    notes.append(f"at t = {ev.t:.10g}")
+    return Event(name, g, True, q, config[q], rate, config, False, 1e-9, tuple(notes))
+
+
+def _event_1dof(solution, integral, when, name) -> Event:
     q = integral.coordinate
     q0, u0 = integral.start
     g = condition_expression(solution, when)
