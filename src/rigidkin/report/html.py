@@ -23,7 +23,7 @@ header { background: #1f3b5c; color: white; padding: 1.2em 2em; }
 header h1 { margin: 0 0 .2em 0; font-size: 1.7em; }
 header .subtitle { margin: 0; opacity: .85; }
 nav { font-family: "DejaVu Sans", sans-serif; font-size: .9em; margin-top: .8em; }
-nav a { color: #d6e4f5; margin-right: 1em; text-decoration: none; white-space: nowrap; }
+nav a { color: #d6e4f5; margin-right: 1em; text-decoration: none; white-space: nowrap; display: inline-block; }
 main { max-width: 60em; margin: 0 auto; padding: 1em 2em 4em 2em; }
 section { background: white; border: 1px solid #e2e2e2; border-radius: 6px; padding: .6em 1.4em 1em 1.4em;
           margin: 1.2em 0; }

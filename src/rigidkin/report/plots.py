@@ -15,6 +15,7 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 from matplotlib.figure import Figure as MplFigure  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from ..printing import greek  # noqa: E402
 from .document import Animation, Figure, Paragraph, Table  # noqa: E402
@@ -55,6 +56,9 @@ def phase_portrait(result, coordinates=None, max_panels: int = 4) -> MplFigure:
         ax.set_ylabel(f"d{g}/dt [{rate_unit}]")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8, loc="best")
+        for axis in (ax.xaxis, ax.yaxis):
+            axis.set_major_locator(MaxNLocator(5))
+        ax.ticklabel_format(style="sci", scilimits=(-3, 4), useMathText=True)
     for ax in axes[n:]:
         ax.set_visible(False)
     fig.suptitle(f"{result.title}: phase portrait", fontsize=11)
