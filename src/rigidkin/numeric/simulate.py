@@ -93,18 +93,21 @@ def _restitution(system, restitution) -> dict:
 
 
 def initial_conditions(system, initial: Mapping | None = None, params=None, mode: Mapping | None = None,
-                  t0: float = 0.0) -> tuple[np.ndarray, dict, int]:
+                       t0: float = 0.0) -> tuple[np.ndarray, dict, int]:
     """The full initial state (q, q̇) and a consistent (mode, regime) at it.
 
     Coordinates and rates given in ``initial`` win; then the declared ``initial``/``rate`` of each
-    coordinate; the dependent ones follow from the constraints of the mode (their integrated
-    relations and rate relations), the rest are zero.  A contact whose gap or normal speed the
-    given values make positive starts open; one they make negative is an error.
+    coordinate; the dependent coordinates without a value follow from the constraints of the mode
+    (their integrated relations and rate relations), the rest are zero.  A contact that the values
+    put apart (gap > 0) or that they move apart (normal speed > 0) starts open; one they push into
+    its surface is an error.  A declared value that contradicts a closed constraint yields to it; a
+    given one is an error.
     """
     hyb = hybrid_of(system)
     lay = hyb.layout
     p = parameter_vector(system, lay, params)
     explicit, declared = initial_values(system, lay, initial)
+    given = {**declared, **explicit}
     cand = hyb.default_mode()
     for name, st in (mode or {}).items():
         if name not in hyb.contacts:
@@ -114,33 +117,26 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
             raise InputError(f"contact state '{st}' is not open, slip or stick.", where=f"mode of {name}")
         cand[name] = st
     n = lay.n
+    where = f"initial state of {system.name}"
     for _ in range(len(hyb.contacts) + 1):
         y = np.zeros(2 * n)
-        for i, v in {**declared, **explicit}.items():
+        for i, v in given.items():
             y[i] = v
-        sol = hyb.solution(cand)
         rel_slots, rel_fn, rate_slots, rate_fn = hyb.relation_functions(cand)
-        # dependent coordinates from the integrated relations (their arguments are independent)
-        if rel_slots:
-            vals = rel_fn(t0, *y, *p)
-            for s, v in zip(rel_slots, vals):
-                if s not in explicit:
-                    y[s] = float(v)
-        if rate_slots:
-            vals = rate_fn(t0, *y, *p)
-            for s, v in zip(rate_slots, vals):
-                if n + s not in explicit:
-                    y[n + s] = float(v)
-        # closed contacts the given values separate
-        opened = []
+        for s, v in zip(rel_slots, rel_fn(t0, *y, *p) if rel_slots else ()):
+            if s not in given:
+                y[s] = float(v)
+        for s, v in zip(rate_slots, rate_fn(t0, *y, *p) if rate_slots else ()):
+            if n + s not in given:
+                y[n + s] = float(v)
         scale = max(1.0, float(np.max(np.abs(y))))
+        opened = []
         for name, c in hyb.contacts.items():
             if cand[name] == OPEN:
                 continue
             gap, vn, _ = hyb.contact_state(name, t0, y, p)
             if gap < -1e-9 * scale:
-                raise InputError(f"the initial state puts contact {name} {-gap:.6g} into its surface.",
-                                 where=f"initial state of {system.name}",
+                raise InputError(f"the initial state puts contact {name} {-gap:.6g} into its surface.", where=where,
                                  hint="Give coordinates that keep the bodies outside the surfaces they touch.")
             if c.unilateral and (gap > 1e-9 * scale or vn > 1e-9 * scale):
                 opened.append(name)
@@ -148,24 +144,28 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
             for name in opened:
                 cand[name] = OPEN
             continue
+        # the values left conflict with closed constraints: declared ones yield, given ones are errors
         bad = []
-        for s in rate_slots:
-            if n + s in explicit:
-                want = float(rate_fn(t0, *y, *p)[rate_slots.index(s)])
-                if abs(explicit[n + s] - want) > 1e-9 * max(1.0, abs(want)):
-                    bad.append(f"{lay.labels[n + s]} = {explicit[n + s]:g} (the constraints give {want:.6g})")
-        for s in rel_slots:
-            if s in explicit:
-                want = float(rel_fn(t0, *y, *p)[rel_slots.index(s)])
-                if abs(explicit[s] - want) > 1e-9 * max(1.0, abs(want)) and hyb._depends_on(cand, lay.coordinates[s]):
-                    bad.append(f"{lay.names[s]} = {explicit[s]:g} (the constraints give {want:.6g})")
+        rel = dict(zip(rel_slots, map(float, rel_fn(t0, *y, *p)))) if rel_slots else {}
+        for s, want in rel.items():
+            if abs(y[s] - want) > 1e-9 * max(1.0, abs(want)):
+                if s in explicit and hyb._depends_on(cand, lay.coordinates[s]):
+                    bad.append(f"{lay.names[s]} = {y[s]:g} (the constraints give {want:.6g})")
+                elif s not in explicit:
+                    y[s] = want
+        rates = dict(zip(rate_slots, map(float, rate_fn(t0, *y, *p)))) if rate_slots else {}
+        for s, want in rates.items():
+            if abs(y[n + s] - want) > 1e-9 * max(1.0, abs(want)):
+                if n + s in explicit:
+                    bad.append(f"{lay.labels[n + s]} = {y[n + s]:g} (the constraints give {want:.6g})")
+                else:
+                    y[n + s] = want
         if bad:
             raise InputError("the initial state violates the constraints of the mode "
-                             f"({describe_mode(system, cand)}): {'; '.join(bad)}.",
-                             where=f"initial state of {system.name}",
+                             f"({describe_mode(system, cand)}): {'; '.join(bad)}.", where=where,
                              hint="Give only the independent coordinates and rates, or values that satisfy "
-                                  "the constraints.")
-        del sol
+                                  "the constraints (a contact they would push into its surface cannot start "
+                                  "closed).")
         mode_, k, _ = hyb.settle(cand, t0, y, p)
         return hyb.project_rates(mode_, t0, y, p), mode_, k
     raise InputError("no set of open and closed contacts fits the initial state.", where=system.name)
@@ -173,8 +173,8 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
 
 def simulate(system, t_span, initial_state: Mapping | None = None, params: Mapping | None = None, *,
              phases: Sequence[Phase] | None = None, mode: Mapping | None = None, restitution=0.0,
-             method: str = "DOP853", rtol: float = 1e-11, atol: float = 1e-13, max_step: float = np.inf,
-             n_points: int = 1001, max_events: int = 1000, rest_speed: float = 1e-7,
+             method: str = "DOP853", rtol: float = 1e-11, atol: float = 1e-13, max_step: float | None = None,
+             n_points: int = 1001, max_events: int = 1000, rest_speed: float = 1e-5,
              energy_tol: float = 1e-6, residual_tol: float = 1e-6,
              progress: Callable[[float, float], None] | None = None) -> SimulationResult:
     """Simulate ``system`` over ``t_span`` (an end time, or (start, end)) through its contact modes.
@@ -183,10 +183,12 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     values; dependent coordinates from the constraints); ``params`` overrides parameter values
     (numbers are SI, strings carry units: ``{"beta": "30 deg"}``); ``phases`` splits the motion into
     stretches with their own parameters; ``mode`` fixes the starting state of contacts;
-    ``restitution`` is e for every contact or a dict per contact (0: the contact closes on impact).
+    ``restitution`` is e for every contact or a dict per contact (0: the contact closes on impact;
+    a bounce slower than ``rest_speed`` closes it too).  ``max_step`` defaults to 1/100 of the span.
     Returns a :class:`SimulationResult` with time histories, events, energy and constraint monitors.
     """
     t0, t1 = _span(t_span)
+    max_step = (t1 - t0) / 100 if max_step is None else float(max_step)   # no event hides inside one step
     if method not in METHODS:
         raise InputError(f"unknown integration method '{method}'.", where="simulate", hint=f"Use {', '.join(METHODS)}.")
     hyb = hybrid_of(system)
@@ -220,8 +222,10 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
             break
         rhs = RHS(model.rhs_function, lay, p, 1, label=system.name, progress=report)
         fns = []
+        zero = 1e-9 * max(1.0, float(np.max(np.abs(y[:2 * n]))))
         for i, w in enumerate(model.watches):
-            fns.append(_event(lambda tt, yy, i=i, p=p, model=model: model.watch_values(tt, yy, p)[i], w.direction))
+            fns.append(_event(lambda tt, yy, i=i, p=p, model=model: model.watch_values(tt, yy, p)[i], w.direction,
+                              t_now, y, zero))
         phase_slot = None
         if ph < len(phases) - 1:
             g = until_fns[ph]
@@ -231,7 +235,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
                     raise InputError(f"phase {ph + 1}'s end condition is already zero where the phase begins "
                                      f"(t = {t_now:g}).", where="phases")
                 phase_slot = len(fns)
-                fns.append(_event(lambda tt, yy, g=g, p=p, s=ph_start: g(tt, yy, p, s), 0))
+                fns.append(_event(lambda tt, yy, g=g, p=p, s=ph_start: g(tt, yy, p, s), 0, t_now, y, 0.0))
         try:
             sol = solve_ivp(rhs, (t_now, t1), y, method=method, rtol=rtol, atol=atol, dense_output=True,
                             events=fns or None, max_step=max_step)
@@ -298,10 +302,23 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     return result
 
 
-def _event(fn, direction):
-    fn.terminal = True
-    fn.direction = direction
-    return fn
+def _event(fn, direction, t_start, y_start, zero):
+    """A terminal solve_ivp event.  A watch that starts at zero (the event that began this mode, or
+    one that coincides with it) counts as lying on its untriggered side for the first 1e-10 of
+    relative time while it stays within rounding of zero, so that the first crossing after it is
+    bracketed and found, and the start itself is never taken for a root."""
+    nudge = direction != 0 and abs(fn(t_start, y_start)) <= zero
+    window = 1e-10 * max(1.0, abs(t_start))
+
+    def event(tt, yy):
+        g = fn(tt, yy)
+        if nudge and tt - t_start <= window and abs(g) <= zero:
+            return -direction * 1e-300       # still at the start's zero (within rounding of the state)
+        return g
+
+    event.terminal = True
+    event.direction = direction
+    return event
 
 
 def _state_text(lay, y) -> str:
