@@ -287,10 +287,10 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
             mode_, k, y, ev = _transition(hyb, model, w, t_now, y, p, e_of, rest_speed)
         except (ModeUnavailable, SimulationError) as exc:
             status = "stopped"
-            message = f"{w.label} at t = {t_now:.10g}, but {exc.message[0].lower() + exc.message[1:]}"
-            if exc.hint:
-                message += f" {exc.hint}"
-            events.append(Event(w.label, "stop", w.name, t_now, before, before, model.description, "", message))
+            reason = exc.message[0].lower() + exc.message[1:]
+            message = f"{w.label} at t = {t_now:.10g}, but {reason}" + (f" {exc.hint}" if exc.hint else "")
+            events.append(Event(f"{w.label}: the simulation stops", "stop", w.name, t_now, before, before,
+                                model.description, "", reason))
             break
         events.append(ev)
     if progress is not None:
@@ -355,7 +355,15 @@ def _transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         cand = {**mode, w.name: OPEN}
         forced = _current_signs(hyb, model, t_, y, p)
         forced.pop(w.name, None)
-        new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+        try:
+            new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+        except ModeUnavailable as exc:
+            c = hyb.contacts[w.name]
+            raise ModeUnavailable(f"the model has no coordinate that lets {w.name} leave its surface: with {w.name} "
+                                  f"open, {exc.message.split(': ', 1)[-1]}", where=hyb.system.name,
+                                  hint=f"Its normal reaction {c.N} reaches zero here. To follow the motion "
+                                       f"beyond, add a coordinate that lets {w.name} separate (such as the "
+                                       "distance of the body from the surface).") from None
         detail = f"the normal reaction of {w.name} reaches zero; the contact opens"
     elif w.kind == "impact":
         c = hyb.contacts[w.name]
@@ -380,8 +388,15 @@ def _transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         forced.pop(w.name, None)
         try:
             new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
-        except ModeUnavailable:
-            new_mode, k, nts = mode, hyb.regime_at(mode, t_, y, p, forced), []
+        except ModeUnavailable as exc:           # the model cannot stick here: can it slip on?
+            try:
+                new_mode, k, nts = mode, hyb.regime_at(mode, t_, y, p, forced), []
+            except SimulationError:
+                raise ModeUnavailable(f"neither slip direction at {w.name} is consistent (so friction holds it), "
+                                      f"and the model cannot stick there: {exc.message.split(': ', 1)[-1]}",
+                                      where=hyb.system.name,
+                                      hint="The body comes to rest relative to the surface; to go on, the "
+                                           "model needs a coordinate that still moves while it sticks.") from None
         if new_mode.get(w.name) == STICK:
             detail = f"the slip speed at {w.name} reaches zero and the friction needed is within µN: it sticks"
         else:
