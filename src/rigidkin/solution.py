@@ -142,6 +142,11 @@ class Solution:
 
         return solution_text(self)
 
+    def _repr_html_(self) -> str:
+        from .report.jupyter import solution_html
+
+        return solution_html(self)
+
     def _repr_latex_(self) -> str:
         lines = []
         rel = {">": ">", "<": "<", ">=": r"\geq", "<=": r"\leq"}

@@ -464,6 +464,16 @@ class System:
         return solve_with(self, method, mode=mode or {}, independent=independent,
                           substitutions=substitutions or {})
 
+    def _repr_html_(self) -> str:
+        from ..report.jupyter import system_html
+
+        return system_html(self)
+
+    def _repr_latex_(self) -> str:
+        from ..report.jupyter import system_latex
+
+        return system_latex(self)
+
     def __repr__(self) -> str:
         return (f"System({self.name}: {len(self.bodies)} bodies, {len(self._coordinates)} coordinates, "
                 f"{len(self.constraints)} constraints, {len(self.loads)} loads)")

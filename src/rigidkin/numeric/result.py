@@ -180,6 +180,11 @@ class SimulationResult:
 
         return plot_result(self, path, title)
 
+    def _repr_html_(self) -> str:
+        from ..report.jupyter import result_html
+
+        return result_html(self)
+
     def __str__(self) -> str:
         lines = [f"{self.title}: simulated to t = {self.t_final:.6g} ({self.status}: {self.message})"]
         for s in self.segments:

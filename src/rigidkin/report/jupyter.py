@@ -1,0 +1,66 @@
+"""Rich display in Jupyter: HTML (MathML) and LaTeX views of a System, a Solution and a simulation result.
+
+These are compact views: what the object *is* (a system's parameters, coordinates, bodies,
+constraints and loads; a solution's equations of motion and reactions; a simulation's modes and
+events with its figures).  The whole derivation is ``rigidkin.report.build_document`` /
+``write_report``.
+"""
+
+from __future__ import annotations
+
+from sympy.physics.vector import dynamicsymbols
+
+from .document import Paragraph, Table, answers_blocks, inputs_tables
+from .html import _block, _esc
+from .notation import latex, latex_text
+
+t = dynamicsymbols._t
+
+STYLE = ("<style>.rigidkin table{border-collapse:collapse;margin:.4em 0}.rigidkin th,.rigidkin td{border:1px "
+         "solid #ccc;padding:.2em .5em;text-align:left;vertical-align:top}.rigidkin caption{text-align:left;"
+         "font-weight:bold}.rigidkin .step{margin:.4em 0}.rigidkin .why{font-style:italic;color:#444}</style>")
+
+
+def fragment(title: str, blocks) -> str:
+    body = "\n".join(_block(b) for b in blocks)
+    return f'{STYLE}<div class="rigidkin"><h3>{_esc(title)}</h3>{body}</div>'
+
+
+def model_tables(system) -> list:
+    """Bodies, constraints and loads of a system, one row each."""
+    bodies = tuple((b.name, b.shape.kind, ", ".join(f"{k} = {v}" for k, v in b.shape.dimensions.items()),
+                    b.frame.name, b.reference.name) for b in system.bodies.values())
+    cons = tuple((c.name, c.kind, ", ".join(str(r) for r in c.reactions()), c.description)
+                 for c in system.constraints.values())
+    loads = tuple((ld.name, ld.kind, ld.description) for ld in system.loads.values())
+    return [Table(("Body", "Shape", "Dimensions", "Frame", "Placed at"), bodies, "Bodies"),
+            Table(("Constraint", "Kind", "Reactions", "Description"), cons, "Constraints"),
+            Table(("Load", "Kind", "Description"), loads, "Loads")]
+
+
+def system_html(system) -> str:
+    blocks = [Paragraph(system.statement)] if system.statement else []
+    return fragment(system.title, blocks + inputs_tables(system) + model_tables(system))
+
+
+def system_latex(system) -> str:
+    rows = [rf"{latex(c.symbol)} & \text{{{latex_text(c.sense or c.description or c.kind)}}}"
+            for c in system.coordinate_info.values()]
+    rows += [rf"{latex(p.symbol)} & \text{{{latex_text(p.description or '')}"
+             + (f" ({p.value:g} {latex_text(p.unit)})" if p.value is not None else "") + "}"
+             for p in system.parameter_info.values()]
+    head = rf"\text{{{latex_text(system.title)}}}"
+    return "$\\displaystyle \\begin{array}{ll}\\multicolumn{2}{l}{" + head + "}\\\\ " + " \\\\ ".join(rows) \
+        + "\\end{array}$"
+
+
+def solution_html(solution) -> str:
+    return fragment(f"{solution.system.title} — {solution.method}", answers_blocks(solution))
+
+
+def result_html(result, figures: bool = True) -> str:
+    """A simulation result: summary, modes, events and (with ``figures``) its time histories and phase portrait."""
+    from .plots import simulation_blocks
+
+    return fragment(f"{result.title}: simulation", simulation_blocks(result, None, figures=figures, animation=False))
+
