@@ -1,0 +1,679 @@
+"""Generated code: the equations of one regime of one mode as compiled C, or numpy without a compiler.
+
+A :class:`Kernel` is the numeric content of a regime, in plain symbols of the state layout
+(t, q…, q̇…, parameters…): the unknowns X (the independent accelerations q̈_i and the reactions),
+given either explicitly (X = b, the Solution's solved expressions) or implicitly (A·X = b, the
+balance equations before the symbolic solve, solved numerically by LU at every call); the rates
+dy/dt = (q̇, q̈) of every coordinate (dependent ones through the constraints' rate and acceleration
+relations) and named outputs (the reactions and any event function).
+
+``compile_kernel`` turns it into one C file (common subexpressions eliminated with ``sympy.cse``,
+small integer powers as products), compiled once with the machine's C compiler and loaded through
+cffi; the shared library is cached on disk by a hash of the generated source in
+``$RIGIDKIN_CACHE`` (default ``~/.cache/rigidkin``).  The same file holds the batch integrator of
+:mod:`rigidkin.numeric.batch`.  Without a compiler (or cffi) the same kernel is evaluated by numpy
+(``lambdify`` with CSE), so every caller keeps working, only slower.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import threading
+import warnings
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+from sympy.printing.c import C99CodePrinter
+
+from ..errors import RigidkinError
+from .state import StateLayout, parameter_vector
+
+t = dynamicsymbols._t
+
+#: Version of the generated code: part of every cache key.
+CODE_VERSION = "1"
+BACKENDS = ("auto", "c", "numpy")
+FORMS = ("auto", "explicit", "implicit")
+
+
+class CodegenError(RigidkinError):
+    """Code could not be generated or compiled for a model."""
+
+
+# ---------------------------------------------------------------------------------------------------
+# the kernel: what code is generated from
+@dataclass(frozen=True, eq=False)
+class Kernel:
+    """The numeric content of one regime of one mode (plain symbols; see the module docstring)."""
+
+    layout: StateLayout
+    unknowns: tuple[sp.Symbol, ...]        # X: q̈_i (named ddot(q)) then reactions
+    unknown_names: tuple[str, ...]
+    A: sp.Matrix | None                    # None: explicit (X = b)
+    b: tuple[sp.Expr, ...]
+    rates: tuple[sp.Expr, ...]             # dy/dt, 2n expressions of args and X
+    outputs: tuple[sp.Expr, ...]           # of args and X
+    output_names: tuple[str, ...]
+    label: str = ""
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def args(self) -> list:
+        return self.layout.arguments()
+
+    @property
+    def form(self) -> str:
+        return "explicit" if self.A is None else "implicit"
+
+    @property
+    def ny(self) -> int:
+        return len(self.args) - 1 - self.np_
+
+    @property
+    def np_(self) -> int:
+        return len(self.layout.parameter_symbols)
+
+    def with_outputs(self, names: Sequence[str], exprs: Sequence[sp.Expr]) -> Kernel:
+        """The same kernel with further named outputs (expressions of the state and parameters)."""
+        exprs = [self.layout.to_plain(sp.sympify(e)) for e in exprs]
+        _check_free(self, exprs)
+        return Kernel(self.layout, self.unknowns, self.unknown_names, self.A, self.b, self.rates,
+                      self.outputs + tuple(exprs), self.output_names + tuple(names), self.label)
+
+    def key(self) -> str:
+        """A hash of the model's numeric content (the cache key of its generated code)."""
+        if "key" not in self._cache:
+            h = hashlib.sha256(CODE_VERSION.encode())
+            for part in (self.args, self.unknowns, self.A, self.b, self.rates, self.outputs):
+                h.update(sp.srepr(part).encode())
+            self._cache["key"] = h.hexdigest()[:24]
+        return self._cache["key"]
+
+    def output_index(self, name: str) -> int:
+        try:
+            return self.output_names.index(name)
+        except ValueError:
+            raise CodegenError(f"'{name}' is not an output of this model.", where=self.label,
+                               hint=f"Outputs: {', '.join(self.output_names) or 'none'}.") from None
+
+
+def _check_free(kernel: Kernel, exprs) -> None:
+    allowed = set(kernel.args) | set(kernel.unknowns)
+    extra = set().union(*[sp.sympify(e).free_symbols for e in exprs]) - allowed if exprs else set()
+    if extra:
+        raise CodegenError(f"the expressions contain {', '.join(sorted(map(str, extra)))}, which is neither a "
+                           "coordinate, a rate, time nor a parameter, so no code can be generated for them.",
+                           where=kernel.label,
+                           hint="Every quantity in a model must be a parameter, a coordinate or a function of time.")
+
+
+def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "auto") -> Kernel:
+    """The kernel of ``system`` in ``mode`` (regime ``regime``), from the solved or the unsolved equations.
+
+    ``form="explicit"`` uses the Solution's solved accelerations and reactions; ``"implicit"`` the
+    Newton–Euler balance equations A·X = b before the symbolic solve (no symbolic solve at all: the
+    route for long chains, whose solved expressions grow without bound); ``"auto"`` uses the solved
+    expressions when the system has already been solved in this mode, and otherwise when the joint
+    system has at most 6 unknowns.
+    """
+    if form not in FORMS:
+        raise CodegenError(f"unknown form '{form}'.", hint=f"Use one of: {', '.join(FORMS)}.")
+    mode = dict(mode or {})
+    key = ("codegen-kernel", tuple(sorted(mode.items())), regime, form)
+    if key in system._cache:
+        return system._cache[key]
+    from ..mode import setup_mode
+
+    setup = setup_mode(system, mode)
+    if form == "auto":
+        solved = any(isinstance(k, tuple) and k[:1] == ("solution",) and tuple(sorted(mode.items())) in k
+                     for k in system._cache)
+        n_unknowns = len(setup.reduction.independent) + len(setup.reactions)
+        form = "explicit" if solved or n_unknowns <= 6 else "implicit"
+    k = _explicit(system, setup, mode, regime) if form == "explicit" else _implicit(system, setup, regime)
+    system._cache[key] = k
+    return k
+
+
+def _rates(layout: StateLayout, red, accel_symbols: Mapping) -> list:
+    """dy/dt of every coordinate: q̇ then q̈ (dependent ones from the reduction's relations)."""
+    qdot, udot = [], []
+    for q in layout.coordinates:
+        if q in red.independent:
+            qdot.append(q.diff(t))
+            udot.append(accel_symbols[q])
+        else:
+            qdot.append(red.rate_map[q.diff(t)])
+            acc = {p.diff(t, 2): accel_symbols[p] for p in red.independent}
+            udot.append(sp.sympify(red.accel_map[q.diff(t, 2)]).xreplace(acc).xreplace(red.rate_map))
+    return [layout.to_plain(e) for e in (*qdot, *udot)]
+
+
+def _unknown_symbols(red, reaction_names):
+    names = [f"ddot({q.func.__name__})" for q in red.independent] + list(reaction_names)
+    return [sp.Symbol(f"X{i}", real=True) for i in range(len(names))], names
+
+
+def _explicit(system, setup, mode, regime) -> Kernel:
+    sol = system.solve(mode=mode)
+    reg = sol.regime(regime)
+    layout = StateLayout.of(system)
+    red = setup.reduction
+    X, names = _unknown_symbols(red, list(reg.reactions))
+    accel = dict(zip(red.independent, X))
+    b = [layout.to_plain(reg.accelerations[q]) for q in red.independent]
+    b += [layout.to_plain(v) for v in reg.reactions.values()]
+    rates = _rates(layout, red, accel)
+    outputs = X[len(red.independent):]
+    k = Kernel(layout, tuple(X), tuple(names), None, tuple(b), tuple(rates), tuple(outputs),
+               tuple(names[len(red.independent):]), label=system.name)
+    _check_free(k, [*b, *rates])
+    return k
+
+
+def _implicit(system, setup, regime) -> Kernel:
+    from ..kinematics import linear_form
+    from ..laws import newton_euler
+    from ..solution import _determinacy
+    from ..trace import Trace
+
+    red = setup.reduction
+    saved, setup.trace = setup.trace, Trace(law="codegen")
+    try:
+        equations = newton_euler.equations(setup)
+    finally:
+        setup.trace = saved
+    present = set().union(*[e.expr.free_symbols for e in equations]) if equations else set()
+    reactions = [r for r in setup.reactions if r in present]
+    absent = [r for r in setup.reactions if r not in present]
+    choices = [c for c in setup.sign_choices if c.symbol in present]
+    combos = list(itertools.product((1, -1), repeat=len(choices)))
+    if not 0 <= regime < len(combos):
+        raise CodegenError(f"regime {regime} does not exist: this mode has {len(combos)}.", where=system.name)
+    signs = {c.symbol: s for c, s in zip(choices, combos[regime])}
+    unknowns = [q.diff(t, 2) for q in red.independent] + reactions
+    A, b = linear_form([e.expr.xreplace(signs) for e in equations], unknowns)
+    keep = _determinacy(A, b, unknowns, [e.label for e in equations])
+    A = A.extract(keep, list(range(len(unknowns))))
+    b = -b.extract(keep, [0])
+    layout = StateLayout.of(system)
+    X, names = _unknown_symbols(red, [str(r) for r in reactions])
+    rates = _rates(layout, red, dict(zip(red.independent, X)))
+    n_acc = len(red.independent)
+    outputs = list(X[n_acc:]) + [sp.Integer(0)] * len(absent)
+    k = Kernel(layout, tuple(X), tuple(names) + tuple(str(r) for r in absent),
+               A.applyfunc(layout.to_plain), tuple(layout.to_plain(e) for e in b), tuple(rates), tuple(outputs),
+               tuple(names[n_acc:]) + tuple(str(r) for r in absent), label=system.name)
+    _check_free(k, [*k.A, *k.b, *rates])
+    return k
+
+
+# ---------------------------------------------------------------------------------------------------
+# C source
+class _Printer(C99CodePrinter):
+    """C99 with small integer powers written as products (exact, and faster than pow)."""
+
+    def __init__(self):
+        super().__init__({"strict": True})
+
+    def _print_Pow(self, expr):
+        base, exp = expr.args
+        if exp.is_Integer and 2 <= abs(int(exp)) <= 4:
+            b = self.parenthesize(base, 100)
+            prod = "*".join([b] * abs(int(exp)))
+            return f"({prod})" if exp > 0 else f"(1.0/({prod}))"
+        if exp == sp.Rational(-1, 2):
+            return f"(1.0/sqrt({self._print(base)}))"
+        return super()._print_Pow(expr)
+
+
+def _c_names(kernel: Kernel) -> dict:
+    """Plain symbols → C names: T, y[i], p[j], X[k]."""
+    m = {kernel.args[0]: sp.Symbol("T")}
+    n2 = kernel.ny
+    for i, s in enumerate(kernel.args[1:1 + n2]):
+        m[s] = sp.Symbol(f"y[{i}]")
+    for j, s in enumerate(kernel.args[1 + n2:]):
+        m[s] = sp.Symbol(f"p[{j}]")
+    for k, s in enumerate(kernel.unknowns):
+        m[s] = sp.Symbol(f"X[{k}]")
+    return m
+
+
+def _c_block(exprs, targets, names, printer, prefix="w") -> list[str]:
+    """CSE'd C statements assigning ``exprs`` to ``targets``."""
+    exprs = [sp.sympify(e).xreplace(names) for e in exprs]
+    if not exprs:
+        return []
+    subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols(prefix), order="none")
+    lines = [f"    const double {s} = {printer.doprint(e)};" for s, e in subs]
+    lines += [f"    {tgt} = {printer.doprint(e)};" for tgt, e in zip(targets, reduced)]
+    return lines
+
+
+_LU_C = r"""
+/* Solve A x = b in place (n <= RK_NX): LU with partial pivoting; returns 0, or 3 when singular. */
+static int rk_lu_solve(int n, double *A, double *b) {
+    for (int k = 0; k < n; k++) {
+        int piv = k; double best = fabs(A[k * n + k]);
+        for (int i = k + 1; i < n; i++) { double v = fabs(A[i * n + k]); if (v > best) { best = v; piv = i; } }
+        if (!(best > 0.0)) return 3;
+        if (piv != k) {
+            for (int j = 0; j < n; j++) { double s = A[k * n + j]; A[k * n + j] = A[piv * n + j]; A[piv * n + j] = s; }
+            double s = b[k]; b[k] = b[piv]; b[piv] = s;
+        }
+        double inv = 1.0 / A[k * n + k];
+        for (int i = k + 1; i < n; i++) {
+            double f = A[i * n + k] * inv;
+            if (f == 0.0) continue;
+            for (int j = k + 1; j < n; j++) A[i * n + j] -= f * A[k * n + j];
+            b[i] -= f * b[k];
+        }
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        double s = b[i];
+        for (int j = i + 1; j < n; j++) s -= A[i * n + j] * b[j];
+        b[i] = s / A[i * n + i];
+    }
+    return 0;
+}
+"""
+
+
+def c_source(kernel: Kernel) -> str:
+    """The C file of a kernel: ``rk_eval_rhs`` and ``rk_eval_out`` (static) and their exported wrappers."""
+    if "c" in kernel._cache:
+        return kernel._cache["c"]
+    printer = _Printer()
+    names = _c_names(kernel)
+    nx = len(kernel.unknowns)
+    lines = ["/* generated by rigidkin.numeric.codegen: " + kernel.label + " */",
+             "#include <math.h>", "#include <string.h>",
+             f"#define RK_NY {kernel.ny}", f"#define RK_NP {kernel.np_}", f"#define RK_NX {max(nx, 1)}",
+             f"#define RK_NO {max(len(kernel.outputs), 1)}", f"#define RK_NOUT {len(kernel.outputs)}"]
+    if kernel.A is not None:
+        lines.append(_LU_C)
+
+    def unknowns_block(needed: set) -> list[str]:
+        if not nx or not needed:
+            return []
+        if kernel.A is None:
+            idx = sorted(needed)
+            return _c_block([kernel.b[i] for i in idx], [f"X[{i}]" for i in idx], names, printer, "v")
+        body = _c_block(list(kernel.A) + list(kernel.b), [f"M[{i}]" for i in range(nx * nx)]
+                        + [f"X[{i}]" for i in range(nx)], names, printer, "v")
+        return [f"    double M[{nx * nx}];", *body, "    if (rk_lu_solve(RK_NX, M, X)) return 3;"]
+
+    def needed(exprs) -> set:
+        used = set().union(*[sp.sympify(e).free_symbols for e in exprs]) if exprs else set()
+        return {i for i, s in enumerate(kernel.unknowns) if s in used}
+
+    for fname, exprs, target in (("rhs", kernel.rates, "dy"), ("out", kernel.outputs, "o")):
+        lines.append(f"static int rk_eval_{fname}(double T, const double *y, const double *p, double *{target}) {{")
+        lines.append(f"    double X[{max(nx, 1)}]; (void)X; (void)T; (void)y; (void)p;")
+        lines += unknowns_block(needed(exprs))
+        lines += _c_block(exprs, [f"{target}[{i}]" for i in range(len(exprs))], names, printer, "w")
+        lines += ["    return 0;", "}"]
+    lines.append(r"""
+int rk_rhs(double t, const double *y, const double *p, double *dy) { return rk_eval_rhs(t, y, p, dy); }
+int rk_out(double t, const double *y, const double *p, double *o) { return rk_eval_out(t, y, p, o); }
+int rk_rhs_batch(long n, const double *t, const double *y, const double *p, double *dy) {
+    int bad = 0;
+    for (long i = 0; i < n; i++) bad |= rk_eval_rhs(t[i], y + i * RK_NY, p + i * RK_NP, dy + i * RK_NY);
+    return bad;
+}
+int rk_out_batch(long n, const double *t, const double *y, const double *p, double *o) {
+    int bad = 0;
+    for (long i = 0; i < n; i++) bad |= rk_eval_out(t[i], y + i * RK_NY, p + i * RK_NP, o + i * RK_NO);
+    return bad;
+}
+""")
+    src = "\n".join(lines)
+    kernel._cache["c"] = src
+    return src
+
+
+_CDEF = """
+int rk_rhs(double t, const double *y, const double *p, double *dy);
+int rk_out(double t, const double *y, const double *p, double *o);
+int rk_rhs_batch(long n, const double *t, const double *y, const double *p, double *dy);
+int rk_out_batch(long n, const double *t, const double *y, const double *p, double *o);
+"""
+
+
+# ---------------------------------------------------------------------------------------------------
+# compiling and caching
+def cache_dir() -> Path:
+    """Where compiled models are kept: ``$RIGIDKIN_CACHE`` or ``~/.cache/rigidkin`` (XDG)."""
+    env = os.environ.get("RIGIDKIN_CACHE")
+    if env:
+        return Path(env).expanduser()
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "rigidkin"
+
+
+def compiler() -> str | None:
+    """The C compiler to use ($CC, else cc/gcc/clang on the PATH), or None."""
+    for name in (os.environ.get("CC"), "cc", "gcc", "clang"):
+        if name and shutil.which(name):
+            return shutil.which(name)
+    return None
+
+
+def c_available() -> bool:
+    """True when C code can be compiled and loaded here (a compiler and cffi)."""
+    try:
+        import cffi  # noqa: F401
+    except ImportError:
+        return False
+    return compiler() is not None
+
+
+_LOADED: dict[str, object] = {}
+_LOCK = threading.Lock()
+
+
+def _flags(size: int) -> list[str]:
+    opt = "-O2" if size < 400_000 else "-O1"
+    return [opt, "-fPIC", "-shared", "-fno-math-errno", "-std=c99"]
+
+
+def _build(source: str, cdef: str):
+    """Compile ``source`` to a shared library (cached by hash) and load it with cffi; returns (ffi, lib)."""
+    import cffi
+
+    cc = compiler()
+    flags = _flags(len(source))
+    digest = hashlib.sha256("\0".join([source, cc or "", *flags, sys.platform]).encode()).hexdigest()[:32]
+    with _LOCK:
+        if digest in _LOADED:
+            return _LOADED[digest]
+        folder = cache_dir()
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise CodegenError(f"the code cache folder {folder} cannot be created ({exc}).",
+                               hint="Set RIGIDKIN_CACHE to a writable folder.") from None
+        lib_path = folder / f"rk_{digest}.so"
+        if not lib_path.exists():
+            with tempfile.TemporaryDirectory(dir=folder) as tmp:
+                src = Path(tmp) / "model.c"
+                src.write_text(source)
+                out = Path(tmp) / "model.so"
+                run = subprocess.run([cc, *flags, "-o", str(out), str(src), "-lm"], capture_output=True,
+                                     text=True, timeout=900)
+                if run.returncode != 0:
+                    raise CodegenError("the C compiler failed on the generated code: "
+                                       + run.stderr.strip().splitlines()[-1][:300] if run.stderr.strip() else "",
+                                       hint="This is a bug in rigidkin's code generator; the numpy backend "
+                                            "still works (backend='numpy').")
+                os.replace(out, lib_path)        # atomic: parallel builders agree
+            (folder / f"rk_{digest}.c").write_text(source)
+        ffi = cffi.FFI()
+        ffi.cdef(cdef)
+        lib = ffi.dlopen(str(lib_path))
+        _LOADED[digest] = (ffi, lib)
+        return ffi, lib
+
+
+# ---------------------------------------------------------------------------------------------------
+# the compiled model
+class CompiledModel:
+    """The functions of a kernel, compiled (``backend == "c"``) or in numpy (``"numpy"``).
+
+    ``rhs(t, y, p)`` → dy/dt; ``outputs(t, y, p)`` → the named outputs; ``rhs_batch`` /
+    ``outputs_batch`` over rows of arrays.  For the batch integrator, ``ffi``/``lib`` hold the C
+    library (None with numpy).
+    """
+
+    def __init__(self, kernel: Kernel, backend: str = "auto"):
+        if backend not in BACKENDS:
+            raise CodegenError(f"unknown backend '{backend}'.", hint=f"Use one of: {', '.join(BACKENDS)}.")
+        self.kernel = kernel
+        self.ffi = self.lib = None
+        if backend in ("auto", "c"):
+            if c_available():
+                from .batch import INTEGRATOR_C, INTEGRATOR_CDEF
+
+                self.ffi, self.lib = _build(c_source(kernel) + INTEGRATOR_C, _CDEF + INTEGRATOR_CDEF)
+            elif backend == "c":
+                raise CodegenError("no C compiler (or the cffi package) is available here.",
+                                   hint="Install gcc and cffi, or use backend='numpy'.")
+        self.backend = "c" if self.lib is not None else "numpy"
+        if self.lib is None:
+            self._np = _numpy_functions(kernel)
+
+    @property
+    def ny(self) -> int:
+        return self.kernel.ny
+
+    def _ptr(self, a: np.ndarray):
+        return self.ffi.from_buffer("double[]", a)
+
+    def rhs(self, t_: float, y, p) -> np.ndarray:
+        y = np.ascontiguousarray(y, dtype=float)
+        p = np.ascontiguousarray(p, dtype=float)
+        if self.lib is None:
+            return self._np.rhs(t_, y, p)
+        dy = np.empty(self.ny)
+        code = self.lib.rk_rhs(t_, self._ptr(y), self._ptr(p), self._ptr(dy))
+        if code:
+            dy[:] = np.nan
+        return dy
+
+    def outputs(self, t_: float, y, p) -> np.ndarray:
+        y = np.ascontiguousarray(y, dtype=float)
+        p = np.ascontiguousarray(p, dtype=float)
+        if self.lib is None:
+            return self._np.outputs(t_, y, p)
+        o = np.empty(max(len(self.kernel.outputs), 1))
+        if self.lib.rk_out(t_, self._ptr(y), self._ptr(p), self._ptr(o)):
+            o[:] = np.nan
+        return o[:len(self.kernel.outputs)]
+
+    def rhs_batch(self, t_, Y, P) -> np.ndarray:
+        """dy/dt for every row of Y (runs × 2n) with parameters P (runs × n_p)."""
+        Y = np.ascontiguousarray(Y, dtype=float)
+        n = Y.shape[0]
+        P = np.ascontiguousarray(np.broadcast_to(P, (n, self.kernel.np_)), dtype=float)
+        T = np.ascontiguousarray(np.broadcast_to(np.asarray(t_, dtype=float), (n,)))
+        if self.lib is None:
+            return np.array([self._np.rhs(T[i], Y[i], P[i]) for i in range(n)]).reshape(n, self.ny)
+        dy = np.empty((n, self.ny))
+        self.lib.rk_rhs_batch(n, self._ptr(T), self._ptr(Y), self._ptr(P), self._ptr(dy))
+        return dy
+
+    def outputs_batch(self, t_, Y, P) -> np.ndarray:
+        Y = np.ascontiguousarray(Y, dtype=float)
+        n = Y.shape[0]
+        no = len(self.kernel.outputs)
+        P = np.ascontiguousarray(np.broadcast_to(P, (n, self.kernel.np_)), dtype=float)
+        T = np.ascontiguousarray(np.broadcast_to(np.asarray(t_, dtype=float), (n,)))
+        if self.lib is None:
+            return np.array([self._np.outputs(T[i], Y[i], P[i]) for i in range(n)]).reshape(n, no)
+        o = np.empty((n, max(no, 1)))
+        self.lib.rk_out_batch(n, self._ptr(T), self._ptr(Y), self._ptr(P), self._ptr(o))
+        return o[:, :no]
+
+
+class _NumpyFunctions:
+    """The kernel through lambdify (with CSE); implicit kernels solved by numpy.linalg."""
+
+    def __init__(self, kernel: Kernel):
+        self.kernel = kernel
+        args = kernel.args
+        X = list(kernel.unknowns)
+        if kernel.A is None:
+            sub = dict(zip(X, kernel.b))
+            self._rates = sp.lambdify(args, [sp.sympify(e).xreplace(sub) for e in kernel.rates], "numpy", cse=True)
+            self._outs = sp.lambdify(args, [sp.sympify(e).xreplace(sub) for e in kernel.outputs], "numpy", cse=True)
+        else:
+            self._Ab = sp.lambdify(args, [list(kernel.A), list(kernel.b)], "numpy", cse=True)
+            self._rates = sp.lambdify(args + X, list(kernel.rates), "numpy", cse=True)
+            self._outs = sp.lambdify(args + X, list(kernel.outputs), "numpy", cse=True)
+
+    def _x(self, t_, y, p):
+        if self.kernel.A is None:
+            return ()
+        A, b = self._Ab(t_, *y, *p)
+        n = len(self.kernel.unknowns)
+        try:
+            return tuple(np.linalg.solve(np.array(A, dtype=float).reshape(n, n), np.array(b, dtype=float)))
+        except np.linalg.LinAlgError:
+            return (np.nan,) * n
+
+    def rhs(self, t_, y, p):
+        with np.errstate(all="ignore"):
+            return np.array(self._rates(t_, *y, *p, *self._x(t_, y, p)), dtype=float)
+
+    def outputs(self, t_, y, p):
+        with np.errstate(all="ignore"):
+            return np.array(self._outs(t_, *y, *p, *self._x(t_, y, p)), dtype=float).reshape(-1)
+
+
+def _numpy_functions(kernel: Kernel) -> _NumpyFunctions:
+    if "numpy" not in kernel._cache:
+        kernel._cache["numpy"] = _NumpyFunctions(kernel)
+    return kernel._cache["numpy"]
+
+
+def compile_kernel(kernel: Kernel, backend: str = "auto") -> CompiledModel:
+    """The compiled model of a kernel (C when a compiler is present, numpy otherwise); cached."""
+    key = ("compiled", backend)
+    if key not in kernel._cache:
+        kernel._cache[key] = CompiledModel(kernel, backend)
+    return kernel._cache[key]
+
+
+def compile_model(system, mode: Mapping | None = None, regime: int = 0, form: str = "auto",
+                  backend: str = "auto") -> CompiledModel:
+    """``compile_kernel(kernel(system, mode, regime, form), backend)``."""
+    return compile_kernel(kernel(system, mode, regime, form), backend)
+
+
+# ---------------------------------------------------------------------------------------------------
+# what the simulator plugs in
+class FastRHS:
+    """rhs(t, y) → dy/dt for y = (q, q̇) with the parameters bound: a drop-in for scipy's solve_ivp.
+
+    Raises :class:`rigidkin.numeric.rhs.SimulationError` on a non-finite rate (a singular
+    configuration), like the lambdified RHS of :mod:`rigidkin.numeric.rhs`.
+    """
+
+    def __init__(self, model: CompiledModel, params: np.ndarray):
+        self.model = model
+        self.params = np.ascontiguousarray(params, dtype=float)
+        self.calls = 0
+        self.layout = model.kernel.layout
+        if model.lib is not None:
+            self._p = model.ffi.from_buffer("double[]", self.params)
+            self._f = model.lib.rk_rhs
+            self._buf = model.ffi.from_buffer
+
+    def __call__(self, t_: float, y) -> np.ndarray:
+        self.calls += 1
+        m = self.model
+        if m.lib is not None:
+            y = y if (type(y) is np.ndarray and y.dtype == np.float64 and y.flags.c_contiguous) \
+                else np.ascontiguousarray(y, dtype=float)
+            dy = np.empty(m.kernel.ny)
+            code = self._f(t_, self._buf("double[]", y), self._p, self._buf("double[]", dy))
+        else:
+            dy = m.rhs(t_, y, self.params)
+            code = 0
+        if code or not np.all(np.isfinite(dy)):
+            from .rhs import SimulationError
+
+            state = ", ".join(f"{k} = {v:.6g}" for k, v in self.layout.as_dict(y).items())
+            raise SimulationError(f"the equations of motion give a non-finite rate at t = {t_:.10g} ({state}).",
+                                  where=m.kernel.label or "simulation",
+                                  hint="The motion reached a singular configuration of the coordinates or of "
+                                       "the mass matrix; check the model and the initial state.")
+        return dy
+
+
+def fast_rhs(system, mode: Mapping | None = None, regime: int = 0, params: Mapping | None = None,
+             form: str = "auto", backend: str = "auto") -> FastRHS:
+    """The compiled rhs(t, y) of ``system`` in ``mode``: same state layout and parameters as ``make_rhs``.
+
+    >>> import rigidkin as rk
+    >>> from rigidkin.numeric.codegen import fast_rhs
+    >>> f = fast_rhs(rk.examples.build("ladder"))
+    >>> [round(v, 6) for v in f(0.0, [0.5, 1.0, 0.0, 0.0])]    # θ, x, θ̇, ẋ
+    [0.0, 0.0, 3.527373, 6.191123]
+    """
+    model = compile_model(system, mode, regime, form, backend)
+    return FastRHS(model, parameter_vector(system, model.kernel.layout, params))
+
+
+def c_backend(args: Sequence[sp.Symbol], exprs: Sequence[sp.Expr]) -> Callable:
+    """A backend for :func:`rigidkin.numeric.rhs.use_backend`: ``f(*args)`` → the values of ``exprs``, in C.
+
+    ``args`` are the simulator's (t, q…, q̇…, parameters…); any symbols may be used.
+    """
+    args = list(args)
+    exprs = [sp.sympify(e) for e in exprs]
+    if not c_available():
+        return sp.lambdify(args, exprs, modules="numpy", cse=True)
+    T = args[0]
+    rest = args[1:]
+    ys = [sp.Symbol(f"_a{i}", real=True) for i in range(len(rest))]
+    sub = dict(zip(rest, ys))
+    # a generic kernel: all arguments but t in y, no parameters, outputs = exprs
+    fake = _GenericLayout(len(rest), T, ys)
+    k = Kernel(fake, (), (), None, (), (), tuple(e.xreplace(sub) for e in exprs),
+               tuple(f"o{i}" for i in range(len(exprs))), label="backend")
+    model = compile_kernel(k, "c")
+    n_out = len(exprs)
+    ffi, lib = model.ffi, model.lib
+
+    def f(*values):
+        y = np.array(values[1:], dtype=float)
+        o = np.empty(max(n_out, 1))
+        lib.rk_out(float(values[0]), ffi.from_buffer("double[]", y), ffi.NULL, ffi.from_buffer("double[]", o))
+        return o[:n_out]
+
+    return f
+
+
+class _GenericLayout(StateLayout):
+    """A layout whose state is any list of plain symbols (``c_backend``)."""
+
+    def __init__(self, size: int, time, symbols):
+        object.__setattr__(self, "names", tuple(f"a{i}" for i in range(size)))
+        object.__setattr__(self, "coordinates", ())
+        object.__setattr__(self, "parameters", ())
+        object.__setattr__(self, "parameter_symbols", ())
+        object.__setattr__(self, "_time", time)
+        object.__setattr__(self, "_symbols", list(symbols))
+
+    @property
+    def n(self) -> int:
+        return len(self._symbols) // 2
+
+    def arguments(self) -> list:
+        return [self._time, *self._symbols]
+
+
+def operation_count(kernel: Kernel) -> int:
+    """Operations in the kernel's expressions after common-subexpression elimination (sympy.count_ops)."""
+    exprs = list(kernel.rates) + list(kernel.outputs) + list(kernel.b) + (list(kernel.A) if kernel.A is not None
+                                                                           else [])
+    subs, reduced = sp.cse(exprs, order="none")
+    return int(sum(sp.count_ops(e) for _, e in subs) + sum(sp.count_ops(e) for e in reduced))
+
+
+def warn_numpy_fallback(model: CompiledModel) -> None:
+    if model.backend != "c":
+        warnings.warn("no C compiler here: rigidkin evaluates the generated code with numpy (slower).",
+                      RuntimeWarning, stacklevel=3)
