@@ -22,9 +22,10 @@ import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
 from .. import algebra
-from ..errors import ModelError, RigidkinError
+from ..errors import RigidkinError
 from ..mode import ModeSetup, setup_mode
 from ..printing import text
+from . import NotApplicable
 from .newton_euler import BalanceEquation
 
 t = dynamicsymbols._t
@@ -53,13 +54,27 @@ def _cache(setup: ModeSetup) -> dict:
     return setup.__dict__.setdefault("_law_cache", {})
 
 
+def _note(setup: ModeSetup, section: str, title: str, equations, why: str) -> None:
+    """Record a step once in the setup's current trace (values are cached, the trace may change)."""
+    if any(st.title == title and st.section == section for st in setup.trace.steps):
+        return
+    setup.trace.add(section, title, equations, why)
+
+
 # ---------------------------------------------------------------------------------------------------
 def kinetic_energies(setup: ModeSetup) -> list[tuple[str, sp.Expr]]:
     """(body name, T_body) with T_body = ½ m v̄·v̄ + ½ ω·Ī·ω, in the independent coordinates."""
     key = ("energy", "T")
     cache = _cache(setup)
-    if key in cache:
-        return cache[key]
+    if key not in cache:
+        cache[key] = _kinetic(setup)
+    for name, T in cache[key]:
+        _note(setup, "Inertia and momentum", f"Kinetic energy of {name}", [(sp.Symbol(f"T_{name}"), T)],
+              "T = ½ m v̄·v̄ + ½ H̄·ω with H̄ = Ī·ω.")
+    return cache[key]
+
+
+def _kinetic(setup: ModeSetup) -> list:
     kin, out = setup.kin, []
     for body in setup.system.bodies.values():
         if body.is_massless:
@@ -69,9 +84,6 @@ def kinetic_energies(setup: ModeSetup) -> list[tuple[str, sp.Expr]]:
         T = body.mass * v.dot(v) / 2 + (w.dot(body.inertia.dot(w)) / 2 if w != Vector(0) else 0)
         T = kin.simplify_expr(setup.scalar(T))
         out.append((body.name, T))
-        setup.trace.add("Inertia and momentum", f"Kinetic energy of {body.name}",
-                        [(sp.Symbol(f"T_{body.name}"), T)], "T = ½ m v̄·v̄ + ½ H̄·ω with H̄ = Ī·ω.")
-    cache[key] = out
     return out
 
 
@@ -84,8 +96,14 @@ def potentials(setup: ModeSetup) -> list[tuple[str, sp.Expr]]:
     """(load name, U_load) for every conservative load (gravity, springs), in the independent coordinates."""
     key = ("energy", "U")
     cache = _cache(setup)
-    if key in cache:
-        return cache[key]
+    if key not in cache:
+        cache[key] = _potentials(setup)
+    for name, U, why in cache[key]:
+        _note(setup, "Inertia and momentum", f"Potential energy of {name}", [(sp.Symbol(f"U_{name}"), U)], why)
+    return [(name, U) for name, U, _ in cache[key]]
+
+
+def _potentials(setup: ModeSetup) -> list:
     kin, out = setup.kin, []
     for ld in setup.loads:
         if not getattr(ld, "conservative", False):
@@ -94,13 +112,10 @@ def potentials(setup: ModeSetup) -> list[tuple[str, sp.Expr]]:
         if U is None:
             continue
         U = kin.simplify_expr(setup.scalar(U))
-        out.append((ld.name, U))
         why = {"gravity": "U = −m g r̄·e_g for each body (zero at the origin).",
                "spring": "U = K (ℓ − ℓ0)²/2 with ℓ the distance between the ends.",
                "torsional spring": "U = K (θ − θ0)²/2."}.get(ld.kind, "potential of a conservative load.")
-        setup.trace.add("Inertia and momentum", f"Potential energy of {ld.name}", [(sp.Symbol(f"U_{ld.name}"), U)],
-                        why)
-    cache[key] = out
+        out.append((ld.name, U, why))
     return out
 
 
@@ -160,8 +175,15 @@ def nonconservative_power(setup: ModeSetup) -> list[Power]:
     """
     key = ("energy", "Pnc")
     cache = _cache(setup)
-    if key in cache:
-        return cache[key]
+    if key not in cache:
+        cache[key] = _powers(setup)
+    for p in cache[key]:
+        title = f"Power of the reactions of {p.name}" if p.kind == "constraint" else f"Power of {p.name}"
+        _note(setup, "Free-body diagram", title, [(sp.Symbol(f"P_{p.name}"), p.power)], p.why)
+    return cache[key]
+
+
+def _powers(setup: ModeSetup) -> list[Power]:
     kin = setup.kin
     by_source: dict[tuple, sp.Expr] = {}
     order: list[tuple] = []
@@ -191,9 +213,6 @@ def nonconservative_power(setup: ModeSetup) -> list[Power]:
         else:
             why = "power F·v."
         out.append(Power(src, P, why, kind))
-        title = f"Power of the reactions of {src}" if kind == "constraint" else f"Power of {src}"
-        setup.trace.add("Free-body diagram", title, [(sp.Symbol(f"P_{src}"), P)], why)
-    cache[key] = out
     return out
 
 
@@ -212,7 +231,7 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     """dE/dt = Σ P_nc, divided by q̇ (one degree of freedom): the equation of motion."""
     red, kin, tr = setup.reduction, setup.kin, setup.trace
     if len(red.independent) != 1:
-        raise ModelError(f"the work–energy law is one scalar equation, but this mode has {len(red.independent)} "
+        raise NotApplicable(f"the work–energy law is one scalar equation, but this mode has {len(red.independent)} "
                          "degrees of freedom, so it cannot give all the equations of motion.",
                          where=setup.system.name, hint="Use newton-euler, lagrange or kane; energy is still a "
                                                       "check (rigidkin check).")
@@ -224,7 +243,7 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     bad = _unknown_reactions(P, setup)
     if bad:
         names = ", ".join(p.name for p in powers if _unknown_reactions(p.power, setup))
-        raise ModelError(f"the power of {names} involves the reaction(s) {', '.join(map(str, bad))}, which the "
+        raise NotApplicable(f"the power of {names} involves the reaction(s) {', '.join(map(str, bad))}, which the "
                          "work–energy law alone does not determine.", where=setup.system.name,
                          hint="Use Euler's laws (newton-euler) for this mode.")
     E = T + U
@@ -238,20 +257,20 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     fwd = {v: k for k, v in back.items()}
     s = fwd.get(u)
     if s is None:
-        raise ModelError("the energy balance does not involve the rate of the coordinate.", where=setup.system.name)
+        raise NotApplicable("the energy balance does not involve the rate of the coordinate.", where=setup.system.name)
     if not algebra.is_zero(plain.xreplace({s: 0})):
-        raise ModelError("the energy balance has terms that do not vanish with q̇ (a moving surface or a "
+        raise NotApplicable("the energy balance has terms that do not vanish with q̇ (a moving surface or a "
                          "time-dependent constraint does work), so it is not q̇ times the equation of motion.",
                          where=setup.system.name, hint="Use newton-euler for a rheonomic system.")
     row = sp.cancel(sp.expand(plain) / s)
     if sp.denom(sp.together(row)).has(s):
-        raise ModelError("the energy balance is not q̇ times an equation of motion (its power is not "
+        raise NotApplicable("the energy balance is not q̇ times an equation of motion (its power is not "
                          "proportional to q̇).", where=setup.system.name)
     row = sp.expand(row.xreplace(back))
     acc = q.diff(t, 2)
     c = row.coeff(acc)
     if c == 0:
-        raise ModelError("the energy balance does not involve the acceleration.", where=setup.system.name)
+        raise NotApplicable("the energy balance does not involve the acceleration.", where=setup.system.name)
     lhs, rhs = -(row - c * acc), kin.simplify_expr(c) * acc
     eq = BalanceEquation(f"work–energy: dE/dt = ΣP_nc, divided by {text(u)}", "system", METHOD,
                          kin.simplify_expr(lhs), rhs)

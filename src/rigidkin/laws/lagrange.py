@@ -1,0 +1,55 @@
+"""Lagrange's equations by ``sympy.physics.mechanics.LagrangesMethod``, built from the same model.
+
+L = T − U with T from the bodies (``RigidBody``) and U from the conservative loads' potentials; the
+other loads enter as generalised forces through the velocities of the points where they act.  All the
+coordinates of the system are kept; the constraints that relate them are passed as holonomic
+constraints (a gap whose rate is the constraint's velocity row) or non-holonomic ones, so the
+multipliers λ and the dependent accelerations come out of the mechanics tools, not out of rigidkin's
+reduction.  The result is the normal form q̈_i = f_i(q, q̇) of the independent coordinates.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from sympy.physics.mechanics import LagrangesMethod, Lagrangian
+from sympy.physics.vector import dynamicsymbols
+
+from ..mode import ModeSetup
+from ..printing import text
+from .mechanics_model import build
+from .newton_euler import BalanceEquation
+
+t = dynamicsymbols._t
+
+METHOD = "lagrange"
+
+
+def equations(setup: ModeSetup) -> list[BalanceEquation]:
+    """q̈_i = f_i for each independent coordinate, from LagrangesMethod with multipliers."""
+    kin, tr = setup.kin, setup.trace
+    model = build(setup, "potential", METHOD)
+    qs = list(setup.system.coordinates)
+    L = Lagrangian(model.frame, *model.bodies) - model.potential if model.bodies else -model.potential
+    tr.add("Balance laws", "Lagrangian", [(sp.Symbol("L"), kin.simplify_expr(L))],
+           "L = T − U over all the coordinates " + ", ".join(text(q) for q in qs) + " (none eliminated).")
+    if model.holonomic or model.nonholonomic:
+        tr.add("Balance laws", "Constraints for Lagrange's equations",
+               [(g, 0) for g in model.holonomic] + [(v, 0) for v in model.nonholonomic],
+               "holonomic constraints (gaps) and rate constraints, each with a multiplier λ.")
+    LM = LagrangesMethod(L, qs, forcelist=model.loads or None, frame=model.frame,
+                         hol_coneqs=model.holonomic or None, nonhol_coneqs=model.nonholonomic or None)
+    eom = LM.form_lagranges_equations()
+    tr.add("Balance laws", "Lagrange's equations", [(e, 0) for e in eom],
+           "d/dt(∂L/∂q̇) − ∂L/∂q = Q_q + Σ λ a_q for every coordinate (sympy.physics.mechanics.LagrangesMethod).")
+    rhs = LM.rhs()
+    n = len(qs)
+    out = []
+    for q in setup.reduction.independent:
+        a = rhs[n + qs.index(q)]
+        a = kin.simplify_expr(setup.scalar(a))
+        out.append(BalanceEquation(f"Lagrange's equations solved for {text(q.diff(t, 2))}", "system", METHOD,
+                                   a, q.diff(t, 2)))
+        tr.add("Balance laws", f"Acceleration {text(q.diff(t, 2))} from Lagrange's equations", [(q.diff(t, 2), a)],
+               "Lagrange's equations and the differentiated constraints solved for the accelerations and "
+               "multipliers, at a state that satisfies the constraints.")
+    return out
