@@ -1,0 +1,151 @@
+"""``rigidkin sweep PROBLEM --param NAME=START:STOP:COUNT … -o table.csv``: many simulations at once.
+
+Every combination of the ``--param`` axes (parameters, or initial values such as ``theta`` and
+``dot(theta)``) is one run; ``--set`` and ``--initial`` fix the others.  Each run is integrated in
+compiled code until ``--stop-at`` (a reaction reaching zero, ``N_A``, or a state value,
+``theta=1.2``; by default the first unilateral contact that stops pushing) or ``--t-end``.  The table
+has one row per run: its parameters, each event's time and state, its final state.
+``--workers N`` runs on a local Dask cluster, ``--scheduler ADDRESS`` on a remote one.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+from ..errors import InputError
+
+
+def register(sub) -> None:
+    p = sub.add_parser("sweep", help="simulate over a grid of parameters and initial values (compiled, parallel)",
+                       description="Simulate one problem over a grid of parameter values and initial states, in "
+                                   "compiled code, and write one table row per run.")
+    p.add_argument("problem", help="a problem file or a bundled example name")
+    p.add_argument("--param", nargs="+", action="extend", default=[], metavar="NAME=START:STOP:COUNT",
+                   help="a swept parameter or initial value: l=1:3:50, theta=0.1:1.2:100 (or NAME=V1,V2,V3)")
+    p.add_argument("--set", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
+                   help="fixed parameter values; units allowed: --set \"beta=30 deg\"")
+    p.add_argument("--initial", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
+                   help="fixed initial coordinates and rates: --initial theta=0.2 \"dot(theta)=0\"")
+    p.add_argument("--t-end", type=float, default=10.0, metavar="T", help="end time of every run [s] (default 10)")
+    p.add_argument("--stop-at", nargs="+", action="extend", default=[], metavar="EVENT",
+                   help="events that end a run: a reaction reaching zero (N_A) or NAME=VALUE "
+                        "(default: any unilateral contact stops pushing)")
+    p.add_argument("--record", nargs="+", action="extend", default=[], metavar="EVENT",
+                   help="further events to record without stopping")
+    p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
+                   help="the mode to integrate: open, slip or stick per contact (default: all closed)")
+    p.add_argument("-o", "--output", required=True, metavar="CSV", help="the table of runs")
+    p.add_argument("--plot", metavar="PNG", help="a figure of the first event's time against the first axis")
+    p.add_argument("--rtol", type=float, default=1e-10, help="relative tolerance (default 1e-10)")
+    p.add_argument("--atol", type=float, default=1e-12, help="absolute tolerance (default 1e-12)")
+    p.add_argument("--threads", type=int, default=None, metavar="N", help="local threads (default: all cores)")
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="run on a local Dask cluster of N worker processes")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run on the Dask cluster at ADDRESS (tcp://host:8786)")
+    p.add_argument("--chunk", type=int, default=None, metavar="RUNS", help="runs per task (default: automatic)")
+    p.add_argument("--backend", choices=("auto", "c", "numpy"), default="auto",
+                   help="generated code: C (compiled here) or numpy (default: C when a compiler is present)")
+    p.set_defaults(func=run)
+
+
+def _pairs(items, what) -> dict:
+    from .simulate import _pairs as pairs
+
+    return pairs(items, what)
+
+
+def parse_axis(text: str, where: str):
+    """``START:STOP:COUNT`` → (start, stop, count); ``V1,V2,…`` → a list; values may carry units."""
+    from ..numeric.state import quantity
+
+    text = text.strip()
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) != 3:
+            raise InputError(f"'{text}' is not START:STOP:COUNT.", where=where, hint="For example theta=0.1:1.2:100.")
+        try:
+            count = int(parts[2])
+        except ValueError:
+            raise InputError(f"the count '{parts[2]}' is not a whole number.", where=where) from None
+        if count < 1 or count > 10_000_000:
+            raise InputError(f"the count {count} must be between 1 and 10^7.", where=where)
+        return quantity(parts[0], None, where), quantity(parts[1], None, where), count
+    values = [quantity(v, None, where) for v in text.split(",") if v.strip()]
+    if not values:
+        raise InputError(f"'{text}' gives no values.", where=where)
+    return values
+
+
+def run(args) -> int:
+    from ..numeric.sweep import sweep
+    from .common import load_system
+
+    system, _ = load_system(args.problem)
+    vary = {name: parse_axis(v, f"--param {name}") for name, v in _pairs(args.param, "--param").items()}
+    for flag, value in (("--threads", args.threads), ("--workers", args.workers), ("--chunk", args.chunk)):
+        if value is not None and value < 1:
+            raise InputError(f"{flag} must be at least 1.", where=flag)
+    scheduler = args.scheduler or ("local" if args.workers else None)
+    progress = _Progress(sys.stderr.isatty())
+    start = time.perf_counter()
+    try:
+        res = sweep(system, vary, params=_pairs(args.set, "--set"), initial=_pairs(args.initial, "--initial"),
+                    t_end=args.t_end, stop_at=args.stop_at or None, record=args.record,
+                    mode=_pairs(args.mode, "--mode"), rtol=args.rtol, atol=args.atol,
+                    workers=args.workers if scheduler else args.threads, scheduler=scheduler, chunk=args.chunk,
+                    backend=args.backend, progress=progress)
+    finally:
+        progress.close()
+    elapsed = time.perf_counter() - start
+    res.to_csv(args.output)
+    counts = {}
+    from ..numeric.batch import STATUS
+
+    for s in res.status:
+        counts[STATUS[int(s)]] = counts.get(STATUS[int(s)], 0) + 1
+    print(f"{len(res)} runs of {system.name} ({res.backend}) in {elapsed:.3g} s: "
+          + ", ".join(f"{v} {k}" for k, v in counts.items()))
+    for k, name in enumerate(res.result.event_names):
+        hit = int((~_isnan(res.result.event_t[:, k])).sum())
+        print(f"  event {name}: {hit} of {len(res)} runs")
+    print(f"Wrote the table to {args.output}")
+    if args.plot:
+        res.plot(args.plot)
+        print(f"Wrote the figure to {args.plot}")
+    bad = [k for k, v in counts.items() if k not in ("reached the end time", "terminal event")]
+    if bad:
+        print(f"rigidkin: warning: some runs ended early ({', '.join(bad)}); see the status column.", file=sys.stderr)
+    return 0
+
+
+def _isnan(a):
+    import numpy as np
+
+    return np.isnan(a)
+
+
+class _Progress:
+    """A rich progress bar over runs on stderr (distributed sweeps report as chunks finish)."""
+
+    def __init__(self, enabled: bool):
+        self.enabled = enabled
+        self.bar = None
+        self.task = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            from rich.console import Console
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+            self.bar = Progress(TextColumn("sweeping"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                                console=Console(stderr=True), transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task("sweep", total=total)
+        self.bar.update(self.task, completed=done)
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.stop()

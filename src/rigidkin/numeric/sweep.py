@@ -1,0 +1,299 @@
+"""Sweeps: one model simulated over many parameter sets and initial states at once.
+
+``sweep(system, vary={...})`` builds the grid of runs (every combination of the varied parameters
+and initial values), completes each initial state through the constraints of the mode (dependent
+coordinates and rates), and integrates all runs in compiled C (:mod:`rigidkin.numeric.batch`) in
+one mode until a stop event: by default the first unilateral contact that stops pushing (the mode
+ends there).  Each run gives one row: its parameters and initial values, the time and state of
+each event, its final state.  With ``scheduler=`` (an address, or ``workers=N`` for a local
+cluster) the runs are distributed over a Dask cluster in chunks; the results are identical to the
+local sweep, run for run, because every run is integrated by the same generated code.
+"""
+
+from __future__ import annotations
+
+import csv
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from ..errors import InputError
+from . import batch
+from .codegen import CompiledModel, Kernel, compile_kernel, kernel
+from .state import StateLayout, parameter_vector, quantity
+
+t = dynamicsymbols._t
+
+
+@dataclass(frozen=True)
+class StopAt:
+    """An event of a sweep: ``name`` (a reaction reaching zero, or ``q=VALUE`` / ``dot(q)=VALUE``)."""
+
+    name: str
+    expr: sp.Expr | None        # None: the kernel output of that name
+    direction: int
+    terminal: bool
+
+
+@dataclass
+class SweepResult:
+    """The runs of a sweep: their inputs (``columns`` of the grid) and the batch result."""
+
+    system_name: str
+    layout: StateLayout
+    inputs: dict[str, np.ndarray]          # varied parameters and initial values, per run
+    params: np.ndarray                     # runs × n_p (every parameter)
+    y0: np.ndarray                         # runs × 2n
+    result: batch.BatchResult
+    backend: str
+
+    def __len__(self) -> int:
+        return len(self.result)
+
+    @property
+    def status(self) -> np.ndarray:
+        return self.result.status
+
+    def event_time(self, name: str) -> np.ndarray:
+        return self.result.event_t[:, self._event(name)]
+
+    def event_state(self, name: str, slot: str | None = None) -> np.ndarray:
+        y = self.result.event_y[:, self._event(name)]
+        return y if slot is None else y[:, self.layout.index(slot)]
+
+    def _event(self, name):
+        try:
+            return self.result.event_names.index(name)
+        except ValueError:
+            raise InputError(f"'{name}' is not an event of this sweep.",
+                             hint=f"Events: {', '.join(self.result.event_names)}.") from None
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The table: one column per input, parameter, event time and state, final time and state, status."""
+        cols: dict[str, np.ndarray] = {"run": np.arange(len(self))}
+        for j, name in enumerate(self.layout.parameters):
+            cols[name] = self.params[:, j]
+        for name, values in self.inputs.items():
+            if name not in cols:
+                cols[name] = values
+        for k, ev in enumerate(self.result.event_names):
+            cols[f"{ev}: t"] = self.result.event_t[:, k]
+            for i, lab in enumerate(self.layout.labels):
+                cols[f"{ev}: {lab}"] = self.result.event_y[:, k, i]
+        cols["end: t"] = self.result.t_end
+        for i, lab in enumerate(self.layout.labels):
+            cols[f"end: {lab}"] = self.result.y_end[:, i]
+        cols["status"] = np.array([batch.STATUS[int(s)] for s in self.result.status], dtype=object)
+        return cols
+
+    def to_csv(self, path) -> Path:
+        path = Path(path)
+        cols = self.columns()
+        names = list(cols)
+        with path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(names)
+            for r in range(len(self)):
+                w.writerow([_fmt(cols[n][r]) for n in names])
+        return path
+
+    def plot(self, path, x: str | None = None, y: str | None = None) -> Path:
+        """A figure of one table column against another (default: the first event's time against the first input)."""
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        cols = self.columns()
+        x = x or (next(iter(self.inputs)) if self.inputs else "run")
+        if y is None:
+            y = f"{self.result.event_names[0]}: t" if self.result.event_names else "end: t"
+        for c in (x, y):
+            if c not in cols:
+                raise InputError(f"'{c}' is not a column of the sweep table.", hint=f"Columns: {', '.join(cols)}.")
+        fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
+        xs, ys = np.asarray(cols[x], dtype=float), np.asarray(cols[y], dtype=float)
+        order = np.argsort(xs, kind="stable")
+        ax.plot(xs[order], ys[order], ".", ms=3 if len(xs) > 200 else 6)
+        ax.set_xlabel(x)
+        ax.set_ylabel(y)
+        ax.set_title(f"{self.system_name}: {len(self)} runs")
+        ax.grid(alpha=0.3)
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        return Path(path)
+
+
+def _fmt(v) -> str:
+    if isinstance(v, (float, np.floating)):
+        return "" if np.isnan(v) else repr(float(v))
+    return str(v)
+
+
+# ---------------------------------------------------------------------------------------------------
+def axis(spec) -> np.ndarray:
+    """Values of a swept quantity: an array, or ``(start, stop, count)`` (inclusive, evenly spaced)."""
+    if isinstance(spec, tuple) and len(spec) == 3:
+        start, stop, count = spec
+        if int(count) != count or count < 1:
+            raise InputError(f"the count of a sweep axis must be a whole number ≥ 1, not {count}.")
+        return np.linspace(float(start), float(stop), int(count))
+    arr = np.atleast_1d(np.asarray(spec, dtype=float))
+    if arr.ndim != 1 or not np.all(np.isfinite(arr)):
+        raise InputError("the values of a sweep axis must be finite numbers.")
+    return arr
+
+
+def stop_event(layout: StateLayout, k: Kernel, spec: str, terminal: bool = True) -> StopAt:
+    """``N_A`` (a reaction reaching zero), or ``theta=1.2`` / ``dot(theta)=0`` (a state value)."""
+    spec = str(spec).strip()
+    if "=" in spec:
+        name, _, value = spec.partition("=")
+        name = name.strip()
+        i = layout.index(name)          # clear error for an unknown coordinate
+        v = quantity(value.strip(), None, f"event {spec}")
+        q, u = layout.plain_symbols()
+        sym = (q + u)[i]
+        return StopAt(f"{name}={value.strip()}", sym - v, 0, terminal)
+    if spec in k.output_names:
+        return StopAt(spec, None, -1, terminal)
+    raise InputError(f"'{spec}' is not an event of this model.", where="stop-at",
+                     hint=f"Use a reaction ({', '.join(k.output_names) or 'none'}) reaching zero, or "
+                          f"NAME=VALUE with a coordinate or rate ({', '.join(layout.labels)}).")
+
+
+def _mode_events(system, mode) -> list[str]:
+    from ..mode import setup_mode
+
+    return [str(r) for r, _ in setup_mode(system, mode).unilateral]
+
+
+def plan(system, vary: Mapping | None = None, params: Mapping | None = None, initial: Mapping | None = None,
+         mode: Mapping | None = None, grid: bool = True) -> tuple[dict, np.ndarray, np.ndarray]:
+    """The runs: (inputs per run, parameters runs × n_p, initial states runs × 2n).
+
+    ``vary`` maps parameter names or initial values (``theta``, ``dot(theta)``) to axis specs; with
+    ``grid`` every combination is a run, otherwise the axes are zipped (equal lengths).
+    """
+    from ..mode import setup_mode
+
+    layout = StateLayout.of(system)
+    base_p = parameter_vector(system, layout, params)
+    n = layout.n
+    y_base = np.zeros(2 * n)
+    given: set[int] = set()
+    for i, c in enumerate(system.coordinate_info.values()):
+        if c.initial is not None:
+            y_base[i] = float(c.initial)
+        if c.rate is not None:
+            y_base[n + i] = float(c.rate)
+    for key, value in (initial or {}).items():
+        i = layout.index(str(key))
+        y_base[i] = quantity(value, None, f"initial {key}")
+        given.add(i)
+    axes: dict[str, np.ndarray] = {}
+    for key, spec in (vary or {}).items():
+        axes[str(key)] = axis(spec)
+    if grid:
+        mesh = np.meshgrid(*axes.values(), indexing="ij") if axes else []
+        inputs = {k: m.ravel() for k, m in zip(axes, mesh)}
+        runs = int(np.prod([len(a) for a in axes.values()])) if axes else 1
+    else:
+        lengths = {len(a) for a in axes.values()}
+        if len(lengths) > 1:
+            raise InputError("zipped sweep axes must have equal lengths.", hint="Use a grid, or give equal counts.")
+        inputs = dict(axes)
+        runs = lengths.pop() if lengths else 1
+    P = np.tile(base_p, (runs, 1))
+    Y = np.tile(y_base, (runs, 1))
+    for name, values in inputs.items():
+        if name in layout.parameters:
+            P[:, layout.parameters.index(name)] = values
+        else:
+            try:
+                i = layout.index(name)
+            except InputError:
+                raise InputError(f"'{name}' is neither a parameter nor a coordinate or rate of {system.name}.",
+                                 where="sweep", hint=f"Parameters: {', '.join(layout.parameters)}; state: "
+                                                     f"{', '.join(layout.labels)}.") from None
+            Y[:, i] = values
+            given.add(i)
+    if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
+        raise InputError("the sweep's values are not all finite numbers.", where="sweep")
+    # dependent coordinates and rates from the constraints of the mode, run by run (vectorised)
+    red = setup_mode(system, dict(mode or {})).reduction
+    args = layout.arguments()
+    for q, expr in red.coord_map.items():
+        i = layout.coordinates.index(q)
+        if i not in given:
+            Y[:, i] = _vector_eval(args, layout.to_plain(expr), [np.zeros(runs), *Y.T, *P.T], runs)
+    cols = [np.zeros(runs), *Y.T, *P.T]
+    for q in red.dependent:
+        i = layout.coordinates.index(q)
+        if n + i not in given:
+            Y[:, n + i] = _vector_eval(args, layout.to_plain(red.rate_map[q.diff(t)]), cols, runs)
+    return inputs, P, Y
+
+
+def _vector_eval(args, expr, columns, runs) -> np.ndarray:
+    f = sp.lambdify(args, expr, "numpy")
+    with np.errstate(all="ignore"):
+        return np.broadcast_to(np.asarray(f(*columns), dtype=float), (runs,)).copy()
+
+
+def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, initial: Mapping | None = None, *,
+          t_end: float = 10.0, stop_at: Sequence[str] | str | None = None, record: Sequence[str] = (),
+          mode: Mapping | None = None, regime: int = 0, grid: bool = True, rtol: float = 1e-10, atol: float = 1e-12,
+          max_step: float = np.inf, workers: int | None = None, scheduler=None, chunk: int | None = None,
+          form: str = "auto", backend: str = "auto", progress: Callable[[int, int], None] | None = None) -> SweepResult:
+    """Simulate ``system`` for every combination of ``vary`` (parameters and initial values).
+
+    ``stop_at``: events that end a run (default: any unilateral contact of the mode stops pushing);
+    ``record``: further events recorded without stopping.  ``scheduler``: a Dask scheduler address,
+    a ``distributed.Client``, or ``"local"`` (a LocalCluster of ``workers`` processes).
+
+    >>> import rigidkin as rk, numpy as np
+    >>> from rigidkin.numeric.sweep import sweep
+    >>> res = sweep(rk.examples.build("ladder"), {"theta": (0.2, 0.6, 3)}, stop_at="N_A")
+    >>> np.round(np.cos(res.event_state("N_A", "theta")) / np.cos([0.2, 0.4, 0.6]), 9)   # cos θ = 2/3 cos θ0
+    array([0.666666667, 0.666666667, 0.666666667])
+    """
+    mode = dict(mode or {})
+    try:
+        t_end = float(t_end)
+    except (TypeError, ValueError):
+        raise InputError(f"the end time must be a number, not {t_end!r}.", where="sweep") from None
+    if not np.isfinite(t_end) or t_end <= 0:
+        raise InputError(f"the end time must be a positive finite number, not {t_end}.", where="sweep")
+    k = kernel(system, mode, regime, form)
+    layout = k.layout
+    stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or _mode_events(system, mode))
+    events = [stop_event(layout, k, s, True) for s in stops]
+    events += [stop_event(layout, k, s, False) for s in record if s not in stops]
+    extra = [e for e in events if e.expr is not None]
+    if extra:
+        k = k.with_outputs([e.name for e in extra], [e.expr for e in extra])
+    bev = [batch.Event(e.name, k.output_index(e.name), e.direction, e.terminal) for e in events]
+    inputs, P, Y = plan(system, vary, params, initial, mode, grid)
+    if scheduler is None:
+        model = compile_kernel(k, backend)
+        res = batch.integrate(model, Y, P, (0.0, t_end), bev, rtol, atol, max_step, workers=workers, chunk=chunk)
+        if progress:
+            progress(len(Y), len(Y))
+        used = model.backend
+    else:
+        from .batch_dask import integrate_dask
+
+        res = integrate_dask(k, Y, P, (0.0, t_end), bev, rtol, atol, max_step, scheduler=scheduler,
+                             workers=workers, chunk=chunk, progress=progress)
+        used = "c (dask)"
+    return SweepResult(system.name, layout, inputs, P, Y, res, used)
+
+
+def model_of(system, mode=None, regime=0, form="auto", backend="auto") -> CompiledModel:
+    """The compiled model a sweep of ``system`` uses."""
+    return compile_kernel(kernel(system, mode, regime, form), backend)
