@@ -218,7 +218,9 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
             message = (f"at t = {t_now:.10g} the mode ({describe_mode(system, mode_)}) was derived with the "
                        "dependent coordinates integrated from the declared initial configuration, and the state "
                        "differs from that by " + ", ".join(f"{nm}: {d:.4g}" for nm, d in mismatch)
-                       + "; its equations depend on these coordinates, so the simulation cannot continue exactly.")
+                       + "; its equations depend on these coordinates, so the simulation cannot continue exactly. "
+                       "(The constant of integration of such a relation is fixed by the declared initial values "
+                       "of the coordinates; a mode entered later may need another one.)")
             break
         rhs = RHS(model.rhs_function, lay, p, 1, label=system.name, progress=report)
         fns = []
