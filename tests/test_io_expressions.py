@@ -108,7 +108,7 @@ def test_extra_functions(scope):
 
 @pytest.mark.parametrize("text, words", [
     ("__import__('os')", ["'__import__'", "dunder"]),
-    ("().__class__.__bases__", ["'.__bases__'", "dunder"]),
+    ("().__class__.__bases__", ["'__class__'", "dunder"]),
     ("lambda: 0", ["lambda"]),
     ("9**9**9**9", ["power inside an exponent"]),
     ("m[0]", ["subscript"]),
@@ -117,7 +117,8 @@ def test_extra_functions(scope):
     ("(a for a in m)", ["generator expression"]),
     ("{1: 2}", ["dict"]),
     ("m.real", ["attribute access '.real'"]),
-    ("R.__dict__", ["'.__dict__'"]),
+    ("R.__dict__", ["'__dict__'"]),
+    ("q.x", ["'q' is not a frame known here"]),
     ("R.w", ["'w' is not an axis of frame R"]),
     ("foo + 1", ["'foo' is not declared"]),
     ("nan", ["'nan' is not declared"]),
@@ -163,10 +164,10 @@ def test_extra_functions(scope):
     ("", ["empty"]),
 ])
 def test_refusals_name_the_construct(scope, text, words):
-    start = time.perf_counter()
+    start = time.process_time()
     with pytest.raises(InputError) as err:
         parse(text, scope, where="problem.toml, line 3, points.G.offset", want="any")
-    assert time.perf_counter() - start < 1.0
+    assert time.process_time() - start < 1.0      # CPU time: other work on the machine does not count
     msg = str(err.value)
     assert msg.startswith("problem.toml, line 3, points.G.offset: ")
     for w in words:
@@ -181,12 +182,12 @@ def test_columns_are_reported(scope):
 
 
 def test_huge_input_is_refused_before_parsing(scope):
-    start = time.perf_counter()
+    start = time.process_time()
     with pytest.raises(InputError, match="10000000 characters long"):
         parse_scalar("m" * 10_000_000, scope)
     with pytest.raises(InputError, match="characters long"):
         parse_scalar("(" * 10_000 + ")" * 10_000, scope)
-    assert time.perf_counter() - start < 1.0
+    assert time.process_time() - start < 1.0
 
 
 def test_scalar_and_vector_are_not_confused(scope):

@@ -141,7 +141,7 @@ class _Parser:
         return InputError(f"in the expression {_snippet(self.text)}{at}: {message}.", where=self.where, hint=hint)
 
     # entry --------------------------------------------------------------------------------------
-    def tree(self, source: str) -> ast.expr:
+    def tree(self, source: str, condition: bool = False) -> ast.expr:
         depth = deepest = 0
         for ch in source:
             if ch in "([{":
@@ -173,7 +173,21 @@ class _Parser:
                 raise self.fail(f"it is nested more than {MAX_DEPTH} levels deep (or chains more than {MAX_DEPTH} "
                                 "operations)", hint="Split it with intermediate parameters or simplify it.")
             stack.extend((c, d + 1) for c in ast.iter_child_nodes(node))
+        self.screen(tree.body, condition)
         return tree.body
+
+    def screen(self, root: ast.AST, condition: bool = False) -> None:
+        """Refuse the worst construct first: names starting with '_' (dunders), then forbidden syntax."""
+        nodes = sorted(ast.walk(root), key=lambda n: (getattr(n, "col_offset", 0), getattr(n, "end_col_offset", 0)))
+        for node in nodes:
+            name = node.id if isinstance(node, ast.Name) else node.attr if isinstance(node, ast.Attribute) else None
+            if name is not None and name.startswith("_"):
+                what = "the name" if isinstance(node, ast.Name) else "attribute access to"
+                raise self.fail(f"{what} '{name}' is not allowed (names starting with '_', such as dunder names, "
+                                "are refused)", node)
+        for node in nodes:
+            if type(node) in _CONSTRUCTS and not (condition and node is root and isinstance(node, ast.Compare)):
+                raise self.fail(f"{_CONSTRUCTS[type(node)]} is not allowed", node)
 
     # nodes --------------------------------------------------------------------------------------
     def build(self, node: ast.AST):
@@ -233,6 +247,11 @@ class _Parser:
         if attr.startswith("_"):
             raise self.fail(f"attribute access '.{attr}' is not allowed (names starting with '_', such as "
                             "dunder names, are refused)", node)
+        if isinstance(node.value, ast.Name) and node.value.id not in self.scope.frames \
+                and node.value.id not in self.scope.names:
+            frames = ", ".join(self.scope.frames) or "none"
+            raise self.fail(f"'{node.value.id}' is not a frame known here, so '{node.value.id}.{attr}' is not a basis "
+                            "vector", node, hint=f"Frames known here: {frames} (a frame's own angle cannot use it).")
         if not isinstance(node.value, ast.Name) or node.value.id not in self.scope.frames:
             raise self.fail(f"attribute access '.{attr}' is not allowed: only FRAME.axis names a basis vector",
                             node)
@@ -461,7 +480,7 @@ def parse_condition(text, scope: Scope, where: str | None = None) -> sp.core.rel
     if not isinstance(text, str):
         raise InputError(f"expected a condition such as \"dot(x) > 0\", not the number {text}.", where=where)
     p = _Parser(text, scope, where)
-    node = p.tree(text)
+    node = p.tree(text, condition=True)
     if not isinstance(node, ast.Compare) or len(node.ops) != 1 or type(node.ops[0]) not in _RELATIONS:
         raise InputError(f"{_snippet(text)} is not a condition.", where=where,
                          hint="Write one comparison with <, >, <= or >=, e.g. \"dot(x) - r*dot(phi) > 0\".")

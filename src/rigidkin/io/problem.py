@@ -26,7 +26,7 @@ from ..model.constraints import Contact
 from ..model.loads import V as DAMPER_SPEED
 from ..model.shapes import SHAPES
 from ..model.system import System
-from ..units import to_si
+from ..units import to_si, unit_dimension
 from . import schema as S
 from .expressions import (
     Scope,
@@ -221,6 +221,7 @@ class _Builder:
         F = self.s.inertial
         self.scope.add_frame("F", F.basis, (F.x, F.y, F.z))
         self.reactions: dict[str, sp.Symbol] = {}
+        self.owners: dict[str, str] = {}          # expression name → what declared it
 
     # helpers ------------------------------------------------------------------------------------------
     def where(self, *path) -> str:
@@ -260,8 +261,23 @@ class _Builder:
             hint = (f"Did you mean '{close[0]}'? " if close else "") + f"Known {kind}s: {known}."
             if kind == "point":
                 hint += " O is the origin; points are declared in [points] or are bodies' mass centres."
+                if name in self.spec.points:
+                    raise ModelError(f"the point '{name}' cannot be placed: {self._chain(name)}.",
+                                     where=self.where(*path), hint="Locate each point from O or from a point that "
+                                                                   "can be placed ('from = ...').")
             raise ModelError(f"there is no {kind} named '{name}'.", where=self.where(*path), hint=hint)
         return table[name]
+
+    def _chain(self, name) -> str:
+        chain, cur = [name], name
+        while cur in self.spec.points and cur not in self.s.points:
+            cur = self.spec.points[cur].from_
+            if cur in chain:
+                return "its 'from' points form a cycle (" + " → ".join(chain + [cur]) + ")"
+            chain.append(cur)
+        if cur in self.s.points:
+            return "it is located from " + " → ".join(chain[1:]) + ", which is not placed yet"
+        return f"it is located (through {' → '.join(chain)}) from '{cur}', which is not a point"
 
     def point(self, name, path, optional=False):
         return self._lookup(self.s.points, "point", name, path, optional)
@@ -276,9 +292,10 @@ class _Builder:
         check_name(name, kind, self.where(*path))
         sc = self.scope
         if name in sc.names or vectors and (name in sc.vectors or name in sc.ambiguous):
-            raise InputError(f"the {kind} name '{name}' is already used in expressions (by a parameter, "
-                             "coordinate or basis vector).", where=self.where(*path),
-                             hint="Give every parameter, coordinate and basis vector a name of its own.")
+            raise InputError(f"the {kind} name '{name}' is already used by {self.owners.get(name, 'another name')}.",
+                             where=self.where(*path),
+                             hint="Give every parameter, coordinate, basis vector and reaction a name of its own.")
+        self.owners.setdefault(name, f"{kind} {name}")
         return name
 
     # the system -----------------------------------------------------------------------------------------
@@ -306,8 +323,16 @@ class _Builder:
                 self.fix_point(name, p)
         for name, c in sp_.constraints.items():
             self.constraint(name, c)
-        for c in self.s.constraints.values():
+        owner: dict[str, str] = {}
+        for cname, c in self.s.constraints.items():
             for r in c.reactions():
+                if r.name in owner or r.name in self.scope.names:
+                    other = owner.get(r.name) or self.owners.get(r.name, r.name)
+                    raise ModelError(f"the reaction name '{r.name}' of {c.kind} {cname} is already used by {other}.",
+                                     where=self.where("constraints", cname),
+                                     hint="Name the reactions apart (normal_name, friction_name, couple_name, "
+                                          "prefix).")
+                owner[r.name] = f"{c.kind} {cname}"
                 self.reactions[r.name] = r
         for name, ld in sp_.loads.items():
             self.load(name, ld)
@@ -317,6 +342,8 @@ class _Builder:
         path = ("parameters", name)
         self.declared(name, "parameter", path)
         value = p.value
+        if p.unit is not None:
+            unit_dimension(p.unit, self.where(*path, "unit"))
         if value is not None:
             where = self.where(*path, "value")
             if isinstance(value, str) and not (_UNIT_QUANTITY.match(value) or _NUMBER.fullmatch(value)):
@@ -454,14 +481,19 @@ class _Builder:
     def friction(self, value, path):
         if isinstance(value, str) and value.strip() in _FRICTION_WORDS:
             return value.strip()
+        if isinstance(value, str) and value.strip().isidentifier() and value.strip() not in self.scope.names:
+            raise InputError(f"friction must be \"smooth\", \"rolling\" or a coefficient µ, not '{value}'.",
+                             where=self.where(*path),
+                             hint="Write friction = \"rolling\" (no slip), \"smooth\", a number or a parameter "
+                                  "such as \"mu\".")
         mu = self.scalar(value, path)
         return "smooth" if mu == 0 else mu
 
     def names(self, c, path):
-        for key in ("normal_name", "friction_name", "couple_name", "prefix"):
+        for key in ("normal_name", "friction_name", "couple_name"):
             v = getattr(c, key, None)
             if v is not None:
-                self.declared(v, "reaction", path + (key,))
+                check_name(v, "reaction", self.where(*path, key))
 
     def constraint(self, name, c):
         path = ("constraints", name)
