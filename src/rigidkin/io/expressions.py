@@ -193,7 +193,13 @@ class _Parser:
     def build(self, node: ast.AST):
         method = getattr(self, f"_{type(node).__name__}", None)
         if method is not None:
-            return method(node)
+            try:
+                return method(node)
+            except InputError:
+                raise
+            except (TypeError, ValueError, ArithmeticError, AttributeError, RecursionError) as exc:
+                raise self.fail(f"it cannot be evaluated ({type(exc).__name__}: {str(exc)[:80]})", node,
+                                hint=None) from None
         if type(node) in _CONSTRUCTS:
             raise self.fail(f"{_CONSTRUCTS[type(node)]} is not allowed", node)
         raise self.fail(f"the construct '{type(node).__name__}' is not allowed", node)

@@ -93,16 +93,20 @@ def read_toml(path: Path | str) -> tuple[str, dict]:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        msg = str(exc)
-        m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
-        where = f"{path}, line {m.group(1)}, column {m.group(2)}" if m else str(path)
-        detail = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg) if m else msg
-        raise InputError(f"TOML syntax error: {detail}.", where=where,
-                         hint="Fix the TOML syntax (strings in double quotes, one 'key = value' per line, each "
-                              "key once per table; see https://toml.io).") from None
+        raise _toml_error(exc, str(path)) from None
     except (RecursionError, MemoryError):
         raise InputError("the TOML is nested too deeply to read.", where=str(path)) from None
     return text, data
+
+
+def _toml_error(exc: Exception, filename: str) -> InputError:
+    msg = str(exc)
+    m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
+    where = f"{filename}, line {m.group(1)}, column {m.group(2)}" if m else filename
+    detail = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg) if m else msg
+    return InputError(f"TOML syntax error: {detail}.", where=where,
+                      hint="Fix the TOML syntax (strings in double quotes, one 'key = value' per line, each key once "
+                           "per table; see https://toml.io).")
 
 
 def validate_schema(data: dict, locator: Locator) -> S.ProblemFile:
@@ -684,6 +688,26 @@ def load_problem(path: Path | str) -> tuple[System, ProblemSpec]:
     """Read, check and build a problem file: returns ``(system, spec)``."""
     path = Path(path)
     text, data = read_toml(path)
+    return build_problem(data, text, path)
+
+
+def parse_problem(text: str, filename: str = "<problem>") -> tuple[System, ProblemSpec]:
+    """A problem from TOML text (as if read from ``filename``): returns ``(system, spec)``."""
+    if len(text) > MAX_FILE_BYTES:
+        raise InputError(f"the problem text is {len(text)} characters long (at most {MAX_FILE_BYTES}).",
+                         where=filename)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise _toml_error(exc, filename) from None
+    except (RecursionError, MemoryError):
+        raise InputError("the TOML is nested too deeply to read.", where=filename) from None
+    return build_problem(data, text, Path(filename))
+
+
+def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") -> tuple[System, ProblemSpec]:
+    """A problem from parsed TOML ``data`` (``text``, if given, lets errors name lines)."""
+    path = Path(path)
     locator = Locator(text, str(path))
     spec = validate_schema(data, locator)
     name = spec.name or path.stem
@@ -701,4 +725,5 @@ def where_in(spec: ProblemSpec | None, *path) -> str | None:
     return spec.where(*path) if spec is not None else None
 
 
-__all__ = ["ProblemSpec", "load_problem", "read_toml", "validate_schema", "where_in", "dotted"]
+__all__ = ["ProblemSpec", "load_problem", "parse_problem", "build_problem", "read_toml", "validate_schema",
+           "where_in", "dotted"]
