@@ -2,8 +2,12 @@
 
 The scalar equations are linear in the unknown accelerations q̈ and reactions.  Before solving,
 their numeric rank at random states tells whether the model is determinate; if not, the error
-names the unknowns that cannot be found or the equations that cannot hold.  The unknowns are then
-solved jointly (Gaussian elimination with numeric pivoting, simplified for reading).
+names the unknowns that cannot be found or the equations that cannot hold.  When a reaction does
+work (a normal force that sets a sliding-friction magnitude) all unknowns are solved jointly
+(Gaussian elimination with numeric pivoting, simplified for reading).  Otherwise the accelerations
+come from the reaction-free equations M q̈ = f and the reactions from the balance equations with
+the accelerations known — the same unknowns, in two small steps instead of one large one (a chain
+of three rods: seconds instead of minutes); both are computed when first asked for.
 
 The equations of motion free of reactions are formed by combining each body's balance with the
 weights that make workless reactions cancel (the partial velocities of the mass centre and the
@@ -238,6 +242,35 @@ def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "
     return keep
 
 
+class LazyMap(Mapping):
+    """A read-only mapping computed on first use (accelerations and reactions of large systems)."""
+
+    def __init__(self, compute):
+        self._compute, self._data = compute, None
+
+    def _get(self) -> dict:
+        if self._data is None:
+            self._data = dict(self._compute())
+            self._compute = None
+        return self._data
+
+    def __getitem__(self, key):
+        return self._get()[key]
+
+    def __iter__(self):
+        return iter(self._get())
+
+    def __len__(self):
+        return len(self._get())
+
+    @property
+    def computed(self) -> bool:
+        return self._data is not None
+
+    def __repr__(self) -> str:
+        return repr(self._data) if self._data is not None else "LazyMap(<not computed yet>)"
+
+
 def _solve_regime(setup, choices, equations, balances, unknowns, reactions, missing, sign_map, trace) -> Regime:
     kin, red = setup.kin, setup.reduction
     exprs = [e.expr.xreplace(sign_map) for e in equations]
@@ -247,33 +280,62 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
                 f"rate-relating constraint rows leave {red_.dof} degree(s) of freedom; the constraints "
                 f"bring the reactions {', '.join(map(str, setup.reactions)) or 'none'}.")
     keep = _determinacy(A, b, unknowns, [e.label for e in equations], dof_note)
-    x = solve_square(A.extract(keep, list(range(len(unknowns)))), -b.extract(keep, [0]),
-                     simplify=kin.simplify_expr)
-    solved = dict(zip(unknowns, x))
-    accels = {q: solved[q.diff(t, 2)] for q in red.independent}
-    react = {str(r): solved[r] for r in reactions}
-    for r in missing:
-        react[str(r)] = sp.Integer(0)
-    # equations of motion free of reactions
-    eom, M, f = _reaction_free_rows(setup, balances, reactions, solved, sign_map)
-    _check_consistency(M, f, accels, red.independent)
-    conditions, validity = _conditions(setup, choices, sign_map, react)
+    raw_rows = _projected_rows(setup, balances, sign_map)
+    working = [r for r in reactions if any(not algebra.is_zero(sp.diff(row, r)) for row in raw_rows)]
+    accel_syms = [q.diff(t, 2) for q in red.independent]
+    if working:
+        x = solve_square(A.extract(keep, list(range(len(unknowns)))), -b.extract(keep, [0]),
+                         simplify=kin.simplify_expr)
+        solved = dict(zip(unknowns, x))
+        accels = {q: solved[q.diff(t, 2)] for q in red.independent}
+        react = {str(r): solved[r] for r in reactions}
+        for r in missing:
+            react[str(r)] = sp.Integer(0)
+        eom, M, f = _rows_to_eom(setup, raw_rows, reactions, solved)
+        _check_consistency(M, f, accels, red.independent)
+        accel_map, react_map = MappingProxyType(accels), MappingProxyType(react)
+        how = "all unknowns from the scalar equations at once."
+    else:
+        eom, M, f = _rows_to_eom(setup, raw_rows, reactions, {})
+
+        def accelerations():
+            return dict(zip(red.independent, solve_square(M, f, simplify=kin.simplify_expr)))
+
+        def solved_reactions():
+            acc = accel_map
+            rhs = -b - A.extract(list(range(A.rows)), list(range(len(accel_syms)))) * sp.Matrix(
+                [acc[q] for q in red.independent])
+            Al = A.extract(list(range(A.rows)), list(range(len(accel_syms), len(unknowns))))
+            rows = _determinacy(Al, rhs, reactions, [e.label for e in equations], dof_note)
+            lam = solve_square(Al.extract(rows, list(range(len(reactions)))), rhs.extract(rows, [0]),
+                               simplify=kin.simplify_expr)
+            out = {str(r): v for r, v in zip(reactions, lam)}
+            out.update({str(r): sp.Integer(0) for r in missing})
+            return out
+
+        accel_map, react_map = LazyMap(accelerations), LazyMap(solved_reactions)
+        how = ("the accelerations from the reaction-free equations M q̈ = f; then the reactions from the "
+               "balance equations with the accelerations known.")
+    conditions, validity = _conditions(setup, choices, sign_map, react_map)
     if sign_map:
         trace.add("Solving", "Regime", [], " and ".join(str(c) for c in conditions))
-    trace.add("Solving", "Accelerations and reactions, solved jointly",
-              [(q.diff(t, 2), a) for q, a in accels.items()] + [(sp.Symbol(k), v) for k, v in react.items()],
-              "all unknowns from the scalar equations at once.")
+    if isinstance(accel_map, LazyMap) and not accel_map.computed:
+        trace.add("Solving", "Mass matrix and forcing", [(sp.Symbol("M"), M), (sp.Symbol("f"), f)], how)
+    else:
+        trace.add("Solving", "Accelerations and reactions, solved jointly",
+                  [(q.diff(t, 2), a) for q, a in accel_map.items()]
+                  + [(sp.Symbol(k), v) for k, v in react_map.items()], how)
     trace.add("Solving", "Equations of motion (reactions eliminated)", [(e, 0) for e in eom],
               "each body's balance weighted by the partial velocity of its mass centre and its partial "
               "angular velocity for each independent rate: workless reactions cancel.")
     return Regime(tuple(conditions), tuple(validity), MappingProxyType(dict(sign_map)), tuple(eom),
-                  MappingProxyType(accels), MappingProxyType(react), M, f)
+                  accel_map, react_map, M, f)
 
 
-def _reaction_free_rows(setup, balances, reactions, solved, sign_map):
+def _projected_rows(setup, balances, sign_map):
+    """Σ over bodies of (F − m ā)·∂v̄/∂u + (M̄ − dH̄/dt)·∂ω/∂u for each independent rate u (negated)."""
     kin, red = setup.kin, setup.reduction
     Fr = kin.F.ref
-    accels = [q.diff(t, 2) for q in red.independent]
     rows = []
     for q in red.independent:
         u = q.diff(t)
@@ -282,7 +344,16 @@ def _reaction_free_rows(setup, balances, reactions, solved, sign_map):
             pv = bal.v_centre.diff(u, Fr, var_in_dcm=False)
             pw = bal.omega.diff(u, Fr, var_in_dcm=False)
             row += (bal.force - bal.mass_accel).dot(pv) + (bal.moment - bal.momentum_rate).dot(pw)
-        row = -setup.scalar(row).xreplace(sign_map)
+        rows.append(-setup.scalar(row).xreplace(sign_map))
+    return rows
+
+
+def _rows_to_eom(setup, raw_rows, reactions, solved):
+    """Workless reactions dropped, working ones replaced by their solved values; M, f and readable rows."""
+    kin, red = setup.kin, setup.reduction
+    accels = [q.diff(t, 2) for q in red.independent]
+    rows = []
+    for row in raw_rows:
         zero = {}
         for r in reactions:
             c = sp.diff(row, r)
@@ -291,12 +362,12 @@ def _reaction_free_rows(setup, balances, reactions, solved, sign_map):
     A, b = linear_form(rows, accels)
     M = A.applyfunc(kin.simplify_expr)
     f = (-b).applyfunc(kin.simplify_expr)
+    ref = {k: v for k, v in kin.reference_values().items() if isinstance(k, sp.Symbol)}
     eom = []
     for i in range(len(rows)):
         e = sum((M[i, j] * accels[j] for j in range(len(accels))), sp.Integer(0)) - f[i]
         e = algebra.strip_factors(e)
         e = sp.collect(sp.expand(e), accels, func=sp.factor_terms) if sp.count_ops(e) < 200 else e
-        ref = {k: v for k, v in setup.kin.reference_values().items() if isinstance(k, sp.Symbol)}
         e = algebra.leading_sign(e, accels, ref) * e
         eom.append(e)
     return eom, M, f
