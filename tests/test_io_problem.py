@@ -157,3 +157,18 @@ gravity = { type = "gravity", g = "g" }
     g, l = s.parameters["g"], s.parameters["l"]
     assert spec.name == "pendulum" and spec.questions == ()
     assert _same(s.solve().accelerations[th], -3 * g * sp.sin(th) / (2 * l))
+
+
+def test_system_scope_reads_expressions_about_a_python_model():
+    from rigidkin.io import system_scope
+    from rigidkin.io.expressions import parse_condition, parse_equation, parse_vector
+
+    s = build("ladder")
+    th = s.coordinates[0]
+    g, l = s.parameters["g"], s.parameters["l"]
+    sc = system_scope(s)
+    eq = parse_equation("ddot(theta) = 3*g*sin(theta)/(2*l)", sc)
+    assert _same(eq.rhs - s.solve().accelerations[th], 0) and eq.lhs == th.diff(t, 2)
+    assert parse_vector("l*R.ey + x*Ex", sc) == l * s.frames["R"].y + s.coordinates[1] * s.inertial.x
+    assert parse_condition("N_A >= 0", sc).lhs == sp.Symbol("N_A", real=True)
+    assert _same(parse_equation("slip(A) = g", sc).rhs, g)

@@ -568,20 +568,7 @@ class _Builder:
 
     # questions --------------------------------------------------------------------------------------------
     def _question_scope(self) -> Scope:
-        sc = self.scope.with_names(self.reactions)
-
-        def slip_of(args, node, parser):
-            if len(args) != 1 or not hasattr(args[0], "id"):
-                raise parser.fail("slip() takes the name of one contact, e.g. slip(ground)", node)
-            cname = args[0].id
-            c = self.s.constraints.get(cname)
-            if not isinstance(c, Contact):
-                contacts = [n for n, k in self.s.constraints.items() if isinstance(k, Contact)]
-                raise parser.fail(f"'{cname}' is not a contact, so slip({cname}) is not defined", node,
-                                  hint=f"Contacts: {', '.join(contacts) or 'none'}.")
-            return slip(sp.Symbol(cname))
-
-        return sc.with_functions({"slip": slip_of})
+        return self.scope.with_names(self.reactions).with_functions({"slip": _slip_handler(self.s)})
 
     def state(self, table: dict, path) -> dict:
         out = {}
@@ -683,6 +670,45 @@ class _Builder:
         return out
 
 
+def _slip_handler(system):
+    """``slip(contact)`` in conditions: the slip speed at a contact of ``system``."""
+
+    def slip_of(args, node, parser):
+        if len(args) != 1 or not hasattr(args[0], "id"):
+            raise parser.fail("slip() takes the name of one contact, e.g. slip(ground)", node)
+        cname = args[0].id
+        c = system.constraints.get(cname)
+        if not isinstance(c, Contact):
+            contacts = [n for n, k in system.constraints.items() if isinstance(k, Contact)]
+            raise parser.fail(f"'{cname}' is not a contact, so slip({cname}) is not defined", node,
+                              hint=f"Contacts: {', '.join(contacts) or 'none'}.")
+        return slip(sp.Symbol(cname))
+
+    return slip_of
+
+
+def system_scope(system, reactions: bool = True) -> Scope:
+    """The names an expression about ``system`` may use, whether it was built in Python or from a file.
+
+    Parameters, coordinates (with ``dot``/``ddot``), ``t``, ``pi``, every frame's basis vectors and,
+    with ``reactions``, the reaction names and ``slip(contact)``.  For example, to read an expected
+    equation of motion: ``parse_equation("ddot(theta) = 3*g*sin(theta)/(2*l)", system_scope(system))``.
+    """
+    sc = default_scope()
+    sc.names.update(system.parameters)
+    for name, c in system.coordinate_info.items():
+        sc.names[name] = c.symbol
+        sc.coordinates[name] = c.symbol
+    for name, fr in system.frames.items():
+        sc.add_frame(name, fr.basis, (fr.x, fr.y, fr.z))
+    if reactions:
+        for c in system.constraints.values():
+            for r in c.reactions():
+                sc.names.setdefault(r.name, r)
+        sc = sc.with_functions({"slip": _slip_handler(system)})
+    return sc
+
+
 # entry points ---------------------------------------------------------------------------------------------
 def load_problem(path: Path | str) -> tuple[System, ProblemSpec]:
     """Read, check and build a problem file: returns ``(system, spec)``."""
@@ -726,4 +752,4 @@ def where_in(spec: ProblemSpec | None, *path) -> str | None:
 
 
 __all__ = ["ProblemSpec", "load_problem", "parse_problem", "build_problem", "read_toml", "validate_schema",
-           "where_in", "dotted"]
+           "system_scope", "where_in", "dotted"]
