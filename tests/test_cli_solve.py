@@ -189,3 +189,12 @@ def test_python_dash_m(tmp_path):
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 2 and "Traceback" not in res.stderr
     assert "bad.toml, line 1" in res.stderr and "TOML syntax error" in res.stderr
+
+
+def test_ask_eom_false_leaves_out_the_equations(capsys, tmp_path):
+    f = tmp_path / "ladder.toml"
+    f.write_text((HERE / "ladder.toml").read_text().replace("eom = true", "eom = false"))
+    code, out, _ = run_cli(capsys, "solve", str(f))
+    assert code == 0
+    assert "Equations of motion" not in out and "Accelerations" not in out
+    assert "N_A = " in out and "leaves_wall" in out

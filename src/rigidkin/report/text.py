@@ -50,21 +50,25 @@ def _coordinates(sol) -> list[str]:
     return out
 
 
-def _regime(sol, r, reactions, labels) -> list[str]:
-    out = ["Equations of motion", ""]
-    for i, e in enumerate(r.eom, start=1):
-        out += [f"{_INDENT}({i})  {text(e)} = 0", ""]
-    out.append("Accelerations")
-    for q, a in r.accelerations.items():
-        out.append(f"{_INDENT}{text(q.diff(t, 2))} = {text(a)}")
+def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
+    out = []
+    if eom:
+        out += ["Equations of motion", ""]
+        for i, e in enumerate(r.eom, start=1):
+            out += [f"{_INDENT}({i})  {text(e)} = 0", ""]
+        out.append("Accelerations")
+        for q, a in r.accelerations.items():
+            out.append(f"{_INDENT}{text(q.diff(t, 2))} = {text(a)}")
+        out.append("")
     shown = [k for k in (reactions if reactions is not None else r.reactions) if k in r.reactions]
     if shown:
-        out += ["", "Reactions"]
+        out += ["Reactions"]
         for k in shown:
             out.append(f"{_INDENT}{k}: {labels.get(k, 'reaction')}")
             out.append(f"{_INDENT * 2}{k} = {text(r.reactions[k])}")
     if r.validity:
-        out += ["", "Holds while"]
+        out += ["" if shown else None, "Holds while"]
+        out = [line for line in out if line is not None]
         named = {v: k for k, v in r.reactions.items()}
         for c in r.validity:
             rel = c.relation.replace(">=", "≥").replace("<=", "≤")
@@ -75,8 +79,9 @@ def _regime(sol, r, reactions, labels) -> list[str]:
     return out
 
 
-def solution_text(sol, reactions=None) -> str:
-    """A solution for a terminal; ``reactions`` limits the reactions shown (default: all)."""
+def solution_text(sol, reactions=None, eom: bool = True) -> str:
+    """A solution for a terminal; ``reactions`` limits the reactions shown (default: all); ``eom=False``
+    leaves out the equations of motion and accelerations (a problem file's ``[ask] eom = false``)."""
     s = sol.system
     out = [s.title, f"(derived with {sol.method})", ""]
     out += _coordinates(sol)
@@ -85,7 +90,7 @@ def solution_text(sol, reactions=None) -> str:
         out.append("")
         if len(sol.regimes) > 1:
             out += [f"Regime {i + 1} of {len(sol.regimes)}: while {r.describe()}", ""]
-        out += _regime(sol, r, reactions, labels)
+        out += _regime(sol, r, reactions, labels, eom)
     return "\n".join(out)
 
 
@@ -113,7 +118,7 @@ def answers_text(answers: dict, questions=()) -> str:
 def problem_text(sol, spec=None, answers: dict | None = None, notes=()) -> str:
     """What ``rigidkin solve`` prints: the solution, the asked reactions, the answers and notes."""
     reactions = spec.reactions if spec is not None else None
-    parts = [solution_text(sol, reactions)]
+    parts = [solution_text(sol, reactions, spec.eom if spec is not None else True).rstrip()]
     if answers:
         parts.append(answers_text(answers, spec.questions if spec is not None else ()))
     if notes:
