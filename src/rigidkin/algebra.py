@@ -171,8 +171,17 @@ def _tidy(e: sp.Basic) -> sp.Basic:
     return out if _ops(out) <= _ops(e) else e
 
 
+#: Reduction modulo sin² + cos² = 1 is skipped when an expression has more angles than this (its cost
+#: grows quickly with the number of angles, and a chain's long expressions are not read by people).
+TRIG_ARGS_LIMIT = 3
+
+
 def _readable_plain(expr: sp.Basic) -> sp.Basic:
-    if _ops(expr) > SIMPLIFY_LIMIT:
+    n_args = len({f.args[0] for f in expr.atoms(sp.sin, sp.cos)})
+    if n_args > TRIG_ARGS_LIMIT:
+        return expr
+    ops = _ops(expr)
+    if ops > SIMPLIFY_LIMIT or (n_args >= 2 and ops > 150):
         return expr
     try:
         e = trig_reduce(expr)

@@ -281,7 +281,7 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
                 f"bring the reactions {', '.join(map(str, setup.reactions)) or 'none'}.")
     keep = _determinacy(A, b, unknowns, [e.label for e in equations], dof_note)
     raw_rows = _projected_rows(setup, balances, sign_map)
-    working = [r for r in reactions if any(not algebra.is_zero(sp.diff(row, r)) for row in raw_rows)]
+    working = _working_reactions(raw_rows, reactions)
     accel_syms = [q.diff(t, 2) for q in red.independent]
     if working:
         x = solve_square(A.extract(keep, list(range(len(unknowns)))), -b.extract(keep, [0]),
@@ -348,17 +348,23 @@ def _projected_rows(setup, balances, sign_map):
     return rows
 
 
+def _working_reactions(rows, reactions) -> list:
+    """The reactions that remain in the projected rows (they do work: e.g. N under sliding friction)."""
+    if not reactions or not rows:
+        return []
+    C, _ = linear_form(rows, reactions)
+    num = np.abs(_numeric(C, 3)) + np.abs(_numeric(C, 4))
+    scale = max(1.0, float(num.max()))
+    return [r for j, r in enumerate(reactions) if num[:, j].max() > 1e-9 * scale]
+
+
 def _rows_to_eom(setup, raw_rows, reactions, solved):
     """Workless reactions dropped, working ones replaced by their solved values; M, f and readable rows."""
     kin, red = setup.kin, setup.reduction
     accels = [q.diff(t, 2) for q in red.independent]
-    rows = []
-    for row in raw_rows:
-        zero = {}
-        for r in reactions:
-            c = sp.diff(row, r)
-            zero[r] = sp.Integer(0) if algebra.is_zero(c) else solved[r]
-        rows.append(row.xreplace(zero))
+    working = set(_working_reactions(raw_rows, reactions))
+    subs = {r: (solved[r] if r in working else sp.Integer(0)) for r in reactions}
+    rows = [row.xreplace(subs) for row in raw_rows]
     A, b = linear_form(rows, accels)
     M = A.applyfunc(kin.simplify_expr)
     f = (-b).applyfunc(kin.simplify_expr)
