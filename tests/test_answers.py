@@ -216,3 +216,40 @@ def test_numeric_event_by_simulation_two_dof():
     m1, m2, l = 2.0, 1.0, 1.0      # the example's values
     assert abs(float(ev.configuration[th]) + 0.5) < 1e-8
     assert abs(float(ev.configuration[x]) - m2 * l * math.sin(0.5) / (m1 + m2)) < 1e-8
+
+
+@pytest.fixture(scope="module")
+def file_answers():
+    from rigidkin.examples import HERE
+    from rigidkin.io.problem import load_problem
+
+    def get(name):
+        system, spec = load_problem(HERE / f"{name}.toml")
+        return system, {a.question.name: a for a in answer_all(system, spec.questions)}
+    return get
+
+
+def test_problem_file_impulse_answers(file_answers):
+    """rod-impulse from its file: ω' = 6F̂/(ml) (card a), then θ_max = F̂ sqrt(3/(mK)) (card b)."""
+    s, ans = file_answers("rod-impulse")
+    th = s.coordinates[0]
+    m, l, K, F = (s.parameters[k] for k in ("m", "l", "K", "F_hat"))
+    assert sp.simplify(ans["after_blow"].value[th.diff(t)] - 6 * F / (m * l)) == 0
+    assert sp.simplify(ans["largest_angle"].value - F * sqrt(3 / (m * K))) == 0
+
+
+def test_problem_file_interval_answers(file_answers):
+    """paper-pull from its file: v = µ g Δt and ω = 2 µ g Δt / r (card a, b)."""
+    s, ans = file_answers("paper-pull")
+    x, phi = s.coordinates
+    mu, g, dt, r = (s.parameters[k] for k in ("mu", "g", "dt", "r"))
+    rates = ans["sheet_gone"].value
+    assert sp.simplify(rates[x.diff(t)] - mu * g * dt) == 0
+    assert sp.simplify(rates[phi.diff(t)] - 2 * mu * g * dt / r) == 0
+
+
+@pytest.mark.parametrize("name", ["ladder", "sphere-on-sphere", "disk-in-track", "disk-spring-incline",
+                                  "slip-to-roll", "collar-force", "boulder-push"])
+def test_every_bundled_question_is_answered(file_answers, name):
+    s, ans = file_answers(name)
+    assert ans and all(a.text and not a.text.startswith("not answered") for a in ans.values())

@@ -235,19 +235,68 @@ def _value(system, question, f, context):
     return Answer(question, value, f"{text(f['expression'])} = {text(value)}{_reading(value, system)}")
 
 
-def _impulse_or_interval(system, question, f, context):
-    try:
-        from ..laws import impulse as impulse_law
-    except ImportError:
-        raise RigidkinError("the impulse–momentum law is not available in this version.") from None
-    handler = getattr(impulse_law, "answer", None)
-    if handler is None:
-        raise RigidkinError("the impulse–momentum law cannot answer questions yet.")
-    return handler(system, question, f, _start(f, context))
+def _impulse(system, question, f, context):
+    from ..laws import impulse as law
+
+    start = _start(f, context)
+    before = {k: v for k, v in start.items() if isinstance(k, sp.Derivative)}
+    at = {k: v for k, v in start.items() if not isinstance(k, sp.Derivative)}
+    res = law.impulsive(system, mode=dict(f.get("mode") or {}), before=before or None, at=at or None,
+                        substitutions=dict(f.get("set") or {}))
+    parts = [f"{text(k)} = {text(v)}{_reading(v, system)}" for k, v in res.rates.items()]
+    parts += [f"{k} = {text(v)}" for k, v in res.reaction_impulses.items()]
+    end = {**start, **res.rates}
+    return Answer(question, dict(res.rates), "just after: " + ", ".join(parts),
+                  details={"end_state": end, "reaction_impulses": dict(res.reaction_impulses)})
+
+
+def _regime_index(system, f) -> int | None:
+    """The regime a relation such as ``dot(x) + r*dot(phi) < V`` selects (matched to a regime condition)."""
+    rel = f.get("regime")
+    if rel is None:
+        return None
+    if not isinstance(rel, sp.Rel):
+        raise InputError("regime must be a condition such as 'dot(x) > 0'.")
+    q = rel.lhs - rel.rhs
+    sign = 1 if rel.rel_op in (">", ">=") else -1
+    sol = _solution(system, f)
+    setup = sol.setup
+    q = setup.scalar(q)
+    for i, r in enumerate(sol.regimes):
+        ok = True
+        for c in r.conditions:
+            csign = 1 if c.relation in (">", ">=") else -1
+            if algebra.is_zero(c.expr - q):
+                ok &= csign == sign
+            elif algebra.is_zero(c.expr + q):
+                ok &= csign == -sign
+            else:
+                ok = False
+        if ok:
+            return i
+    raise InputError(f"the condition {text(rel)} does not select one of the regimes: "
+                     + "; ".join(r.describe() for r in sol.regimes) + ".")
+
+
+def _interval(system, question, f, context):
+    from ..laws import impulse as law
+
+    start = _start(f, context)
+    res = law.interval(system, start, duration=f.get("duration"), until=f.get("until"),
+                       mode=dict(f.get("mode") or {}), substitutions=dict(f.get("set") or {}),
+                       regime=_regime_index(system, f))
+    parts = [f"{text(k)} = {text(v)}{_reading(v, system)}" for k, v in res.rates.items()]
+    head = "at the end"
+    if res.duration is not None and f.get("duration") is None:
+        head = f"after Δt = {text(res.duration)}{_reading(res.duration, system)}"
+    note = "; ".join(f"{text(e)} {r} 0 ({d})" for e, r, d in res.conditions) if res.conditions else ""
+    end = {**start, **res.rates}
+    return Answer(question, dict(res.rates), f"{head}: " + ", ".join(parts), note=note,
+                  details={"end_state": end, "duration": res.duration})
 
 
 _HANDLERS = {
     "eom": _eom, "reaction": _reaction, "integral": _integral, "event": _event, "extreme": _extreme,
     "threshold": _threshold, "equilibrium": _equilibrium, "phases": _phases, "value": _value,
-    "impulse": _impulse_or_interval, "interval": _impulse_or_interval,
+    "impulse": _impulse, "interval": _interval,
 }
