@@ -280,8 +280,8 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
 
 
 def energy_balance(system, start: dict, end: dict, unknowns, mode: dict | None = None,
-                   substitutions: dict | None = None, extra: list | None = None, choose=None):
-    """Solve E(end) = E(start) (+ ``extra`` equations, e.g. conserved momenta) for ``unknowns``.
+                   substitutions: dict | None = None, conserved: list | None = None, choose=None):
+    """Solve E(end) = E(start), and Q(end) = Q(start) for each ``conserved`` Q(q, q̇), for ``unknowns``.
 
     ``start`` and ``end`` map coordinates and rates (q, q̇, of any coordinate) to values; ``unknowns``
     are among the ``end`` quantities (a coordinate or a rate).  Every non-conservative power must be
@@ -297,11 +297,12 @@ def energy_balance(system, start: dict, end: dict, unknowns, mode: dict | None =
                             hint="Use the work–energy law with the work of these loads, or impulse–momentum.")
     E = kinetic_energy(setup) + potential_energy(setup)
     unknowns = list(unknowns) if isinstance(unknowns, (list, tuple)) else [unknowns]
-    E0, E1 = _at_state(E, start, setup), _at_state(E, end, setup, unknowns)
     dummies = {u: sp.Dummy(str(u)) for u in unknowns}
-    eqs = [sp.Eq(E1.xreplace(dummies), E0)]
-    for ex in extra or []:
-        eqs.append(sp.sympify(ex).xreplace(dummies))
+    E0, E1 = _at_state(E, start, setup), _at_state(E, end, setup, dummies)
+    eqs = [sp.Eq(E1, E0)]
+    for Q in conserved or []:
+        Q = getattr(Q, "expr", Q)
+        eqs.append(sp.Eq(_at_state(Q, end, setup, dummies), _at_state(Q, start, setup)))
     sols = sp.solve(eqs, list(dummies.values()), dict=True)
     if not sols:
         raise RigidkinError("the energy balance has no solution for " + ", ".join(map(text, unknowns)) + ".",
@@ -312,19 +313,21 @@ def energy_balance(system, start: dict, end: dict, unknowns, mode: dict | None =
         sol = choose(sols)
     else:
         sol = _positive(sols, setup)
-    tr.add("Answers", "Energy balance", [(E1, E0)] + [(k, v) for k, v in sol.items()],
+    tr.add("Answers", "Energy balance", [(E1.xreplace(back), E0)] + [(k, v) for k, v in sol.items()],
            "E = T + U is conserved: every non-conservative power is zero in this mode.")
     return sol
 
 
-def _at_state(E, state: dict, setup, unknowns=()) -> sp.Expr:
-    """E with the coordinates and rates of ``state`` substituted (rates first)."""
-    rates = {k: v for k, v in state.items() if isinstance(k, sp.Derivative)}
-    coords = {k: v for k, v in state.items() if not isinstance(k, sp.Derivative)}
-    e = E.xreplace({k: sp.sympify(v) for k, v in rates.items()})
-    e = e.xreplace({k: sp.sympify(v) for k, v in coords.items()})
-    left = [f for f in algebra.functions_of_time(e)] + list(e.atoms(sp.Derivative))
-    left = [x for x in left if x not in unknowns and not any(x.has(u) for u in unknowns)]
+def _at_state(E, state: dict, setup, dummies: dict | None = None) -> sp.Expr:
+    """E at ``state``: its rates, then the unknowns (as dummies), then its coordinates substituted."""
+    rates = {k: sp.sympify(v) for k, v in state.items() if isinstance(k, sp.Derivative)}
+    coords = {k: sp.sympify(v) for k, v in state.items() if not isinstance(k, sp.Derivative)}
+    e = E.xreplace(rates)
+    if dummies:
+        e = e.xreplace({k: v for k, v in dummies.items() if isinstance(k, sp.Derivative)})
+        e = e.xreplace({k: v for k, v in dummies.items() if not isinstance(k, sp.Derivative)})
+    e = e.xreplace(coords)
+    left = algebra.functions_of_time(e) | {d for d in e.atoms(sp.Derivative)}
     if left:
         raise RigidkinError("the state leaves " + ", ".join(map(text, left)) + " unknown in the energy.",
                             hint="Give every coordinate and rate of the start and end states.")
