@@ -124,6 +124,15 @@ def trig_reduce(expr: sp.Basic) -> sp.Basic:
     keeping the shorter).  This is polynomial algebra, far cheaper than ``trigsimp`` on the
     expressions multibody kinematics produce, and it decides the identities that matter here.
     """
+    # radicals of parameters (sqrt(R² − l²/4) and sqrt(4R² − l²)) in one canonical form, then symbols
+    expr = expr.replace(lambda x: x.is_Pow and x.exp.is_Rational and not x.exp.is_Integer and x.base.is_Add,
+                        lambda x: sp.Pow(sp.factor(x.base), x.exp))
+    radicals = sorted({x for x in expr.atoms(sp.Pow) if x.exp.is_Rational and not x.exp.is_Integer
+                       and not x.base.is_Symbol}, key=sp.default_sort_key)
+    rad = {x: sp.Dummy(f"rad{i}", positive=True) for i, x in enumerate(radicals)}
+    if rad:
+        out = trig_reduce(expr.xreplace(rad))
+        return out.xreplace({v: k for k, v in rad.items()})
     trig = [f for f in expr.atoms(sp.sin, sp.cos, sp.tan)]
     if not trig:
         return sp.cancel(expr) if expr.is_rational_function() else expr
@@ -160,15 +169,17 @@ def trig_reduce(expr: sp.Basic) -> sp.Basic:
 def _tidy(e: sp.Basic) -> sp.Basic:
     """Collect sums by the rates (R θ̇² − r θ̇² → (R − r) θ̇²) wherever that shortens them."""
     rates = sorted((s for s in e.free_symbols if s.name.endswith("_d1") and s.name.startswith("_")), key=str)
-    if not rates:
-        return e
 
     def collect(x):
         c = sp.collect(x, rates, func=sp.factor_terms)
         return c if _ops(c) < _ops(x) else x
 
-    out = e.replace(lambda x: x.is_Add and x.has(*rates), collect)
-    return out if _ops(out) <= _ops(e) else e
+    out = e.replace(lambda x: x.is_Add and x.has(*rates), collect) if rates else e
+    out = out if _ops(out) <= _ops(e) else e
+    num, den = sp.fraction(out)
+    if den != 1 and den.is_Add and den.could_extract_minus_sign():
+        out = (-num) / (-den)
+    return out
 
 
 #: Reduction modulo sin² + cos² = 1 is skipped when an expression has more angles than this (its cost
@@ -181,7 +192,8 @@ def _readable_plain(expr: sp.Basic) -> sp.Basic:
     if n_args > TRIG_ARGS_LIMIT:
         return expr
     ops = _ops(expr)
-    if ops > SIMPLIFY_LIMIT or (n_args >= 2 and ops > 150):
+    limit = {0: 4 * SIMPLIFY_LIMIT, 1: 4 * SIMPLIFY_LIMIT, 2: SIMPLIFY_LIMIT}.get(n_args, 150)
+    if ops > limit:
         return expr
     try:
         e = trig_reduce(expr)
