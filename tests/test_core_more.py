@@ -119,3 +119,44 @@ def test_friction_against_moving_collar_regimes():
     reg = sol.regime_at({x.diff(t): 1.0, P: 1.0, m: 1.0, g: 9.81, mu: 0.3})
     a = reg.accelerations[x]
     assert values_match(a, (P - mu * (m * g - P)) / m, [x], ranges={"P": (0.1, 0.5), "g": (5, 10)})
+
+
+def test_atwood_machine_with_a_cable_over_pulleys():
+    """Two masses hang from a rope over two small fixed pulleys: a = (m1 − m2) g/(m1 + m2) downwards for
+    m1, T = 2 m1 m2 g/(m1 + m2) (by hand)."""
+    s = rk.System("atwood")
+    m1, m2, g, H, L, a = (s.parameter(n) for n in ("m1", "m2", "g", "H", "L", "a"))
+    y1 = s.coordinate("y1", "height of mass 1", kind="length")
+    y2 = s.coordinate("y2", "height of mass 2", kind="length")
+    F = s.inertial
+    A = s.point("A", offset=-a * F.x + y1 * F.y)
+    B = s.point("B", offset=a * F.x + y2 * F.y)
+    P1, P2 = s.point("P1", offset=-a * F.x + H * F.y), s.point("P2", offset=a * F.x + H * F.y)
+    b1 = s.body("mass1", rk.shapes.PointMass(m1), frame=F, at=A)
+    b2 = s.body("mass2", rk.shapes.PointMass(m2), frame=F, at=B)
+    s.collar("guide1", b1, along=F.y)
+    s.collar("guide2", b2, along=F.y)
+    s.cable("rope", [A, P1, P2, B], L, tension_name="T")
+    s.gravity(g)
+    sol = s.solve()
+    assert sol.coordinates == (y1,)
+    assert sp.simplify(sol.relations[y2] - (2 * H + 2 * a - L - y1)) == 0
+    assert sp.simplify(sol.accelerations[y1] + (m1 - m2) * g / (m1 + m2)) == 0
+    assert sp.simplify(sol.reactions["T"] - 2 * m1 * m2 * g / (m1 + m2)) == 0
+    assert "taut" in sol.validity[0].label
+
+
+def test_cable_slack_mode_drops_the_tension():
+    s = rk.System("hanging")
+    m, g, L = (s.parameter(n) for n in ("m", "g", "L"))
+    y = s.coordinate("y", "height of the mass", kind="length")
+    F = s.inertial
+    A = s.point("A", offset=y * F.y)
+    b = s.body("mass", rk.shapes.PointMass(m), frame=F, at=A)
+    s.collar("guide", b, along=F.y)
+    s.cable("rope", [A, s.origin], L, tension_name="T")
+    s.gravity(g)
+    with pytest.raises(rk.ConstraintError, match="no degree of freedom"):
+        s.solve()                       # taut, the rope and the guide fix the mass
+    free = s.solve(mode={"rope": "open"})
+    assert sp.simplify(free.accelerations[y] + g) == 0

@@ -405,8 +405,9 @@ def _conditions(setup, choices, sign_map, react):
         conds.append(Condition(q, ">" if s > 0 else "<", sc.label))
     for sym, row in setup.unilateral:
         if str(sym) in react:
-            valid.append(Condition(react[str(sym)], ">=", f"{row.constraint} pushes (unilateral contact)",
-                                   "validity"))
+            label = (f"{row.constraint} is taut (a cable can only pull)" if row.kind == "tension"
+                     else f"{row.constraint} pushes (unilateral contact)")
+            valid.append(Condition(react[str(sym)], ">=", label, "validity"))
     for c in setup.system.constraints.values():
         fr = getattr(c, "friction", None)
         if setup.states.get(c.name) == "stick" and hasattr(fr, "mu") and str(c.F) in react:

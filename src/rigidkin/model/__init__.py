@@ -2,7 +2,7 @@
 
 from . import shapes
 from .bodies import Body
-from .constraints import Collar, Contact, Coulomb, Pin
+from .constraints import Cable, Collar, Contact, Coulomb, Pin
 from .frames import Frame
 from .loads import Damper, Force, Gravity, SlidingFriction, Spring, Torque, TorsionalSpring
 from .points import Point
@@ -10,6 +10,6 @@ from .quantities import Coordinate, Parameter
 from .surfaces import Circle, Line, Plane, Sphere
 from .system import System
 
-__all__ = ["shapes", "Body", "Collar", "Contact", "Coulomb", "Pin", "Frame", "Damper", "Force", "Gravity",
+__all__ = ["shapes", "Body", "Cable", "Collar", "Contact", "Coulomb", "Pin", "Frame", "Damper", "Force", "Gravity",
            "SlidingFriction", "Spring", "Torque", "TorsionalSpring", "Point", "Coordinate", "Parameter",
            "Circle", "Line", "Plane", "Sphere", "System"]

@@ -42,7 +42,7 @@ class Row:
     applications: tuple[Application, ...]
     gap: sp.Expr | None = None
     unilateral: bool = False
-    kind: str = "force"      # "force", "normal", "tangential", "torque"
+    kind: str = "force"      # "force", "normal", "tangential", "torque", "tension"
 
 
 @dataclass(eq=False)
@@ -315,3 +315,58 @@ class Collar(Constraint):
                                 normal=self._normals(kin)[0], mu=self.friction.mu, normal_force=self.N,
                                 against_body=self.track_body, normal_unilateral=False,
                                 sign_symbol=sp.Symbol(f"sigma_{self.name}"))]
+
+
+@dataclass(eq=False)
+class Cable(Constraint):
+    """An inextensible cable (string, rope) through ``points``, taut with tension T ≥ 0.
+
+    ``points`` are the cable's ends and the small frictionless pulleys or eyes it runs over, in
+    order; ``bodies`` the body each is fixed in (None: the ground).  While taut its length
+    Σ |P_{k+1} − P_k| equals ``length``; the tension T pulls each point towards its neighbours (an end
+    towards the next point, a pulley on a body along the sum of both directions).  A cable can only
+    pull: it goes slack when T reaches zero (the gap length − Σ|…| opens).
+    """
+
+    points: tuple = ()
+    bodies: tuple = ()
+    length: sp.Expr = None
+    tension_name: str | None = None
+
+    kind = "cable"
+    states = ("slip", "open")
+
+    @property
+    def T(self) -> sp.Symbol:
+        return sp.Symbol(self.tension_name or f"T_{self.name}", real=True)
+
+    def reactions(self):
+        return [self.T]
+
+    def _units(self, kin):
+        pos = [kin.position(p) for p in self.points]
+        segs = [pos[k + 1] - pos[k] for k in range(len(pos) - 1)]
+        lens = [kin.magnitude(d) for d in segs]
+        units = [kin.simplify_vector(d / ell) for d, ell in zip(segs, lens)]
+        return pos, lens, units
+
+    def rows(self, kin, state):
+        if state == "open":
+            return []
+        pos, lens, units = self._units(kin)
+        total = sum(lens, sp.Integer(0))
+        velocity = sum((kin.velocity(self.points[k + 1]) - kin.velocity(self.points[k])).dot(units[k])
+                       for k in range(len(units)))
+        apps = []
+        T = self.T
+        for k, (p, b) in enumerate(zip(self.points, self.bodies)):
+            if b is None:
+                continue
+            pull = Vector(0)
+            if k + 1 < len(self.points):
+                pull += units[k]
+            if k > 0:
+                pull -= units[k - 1]
+            apps.append(Application(b, p, T * pull, f"cable tension {T}", self.name, reaction=T))
+        return [Row(self.name, f"cable {self.name}: length", kin.simplify_expr(velocity), T, tuple(apps),
+                    gap=kin.simplify_expr(self.length - total), unilateral=True, kind="tension")]

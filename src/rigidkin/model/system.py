@@ -90,7 +90,11 @@ class System:
     # parameters and coordinates ---------------------------------------------------------------
     def parameter(self, name: str, unit: str | None = None, description: str = "", value=None,
                   dimension: str | Dimension | None = None, positive: bool = True) -> sp.Symbol:
-        """Declare a parameter; returns its positive real sympy Symbol."""
+        """Declare a parameter; returns its positive real sympy Symbol.
+
+        ``value`` is a number in ``unit`` (``unit="cm", value=50`` is 0.5 m) or a quantity string
+        (``"30 deg"``); it is stored in SI.
+        """
         where = f"parameter {name}"
         if unit is not None:
             dim = unit_dimension(unit, where)
@@ -103,7 +107,8 @@ class System:
             dim = NAMED[dimension]
         else:
             dim = ONE
-        val = None if value is None else to_si(value, unit if isinstance(value, str) else None, where)
+        si_unit = unit if unit is not None and str(unit).strip() not in ("", "1", "-") else None
+        val = None if value is None else to_si(value, si_unit, where)   # a number is in ``unit``
         sym = sp.Symbol(name, positive=True) if positive else sp.Symbol(name, real=True)
         self._claim(name, "parameter")
         self._parameters[name] = Parameter(name, sym, description, unit or "", dim, val)
@@ -364,6 +369,29 @@ class System:
                        normal_name=normal_name, couple_name=couple_name, description=description)
         for sym in con.reactions():
             self._claim(sym.name, "reaction")
+        return self._add_constraint(con)
+
+    def cable(self, name: str, points, length, bodies=None, tension_name: str | None = None,
+              description: str = "") -> C.Cable:
+        """An inextensible cable through ``points`` (ends and pulleys), taut with tension T ≥ 0.
+
+        ``bodies`` gives the body of each point (default: the body each point is fixed in, or the
+        ground); ``length`` is the cable's length between its ends.
+        """
+        self._claim(name, "constraint", "constraint")
+        where = f"cable {name}"
+        pts = tuple(self._check_point(p, where) for p in points)
+        if len(pts) < 2:
+            raise ModelError("a cable needs at least its two ends.", where=where)
+        if bodies is None:
+            bs = tuple(p.body for p in pts)
+        else:
+            if len(bodies) != len(pts):
+                raise ModelError(f"give one body (or None) for each of the {len(pts)} points.", where=where)
+            bs = tuple(self._check_body(b, where, allow_none=True) for b in bodies)
+        con = C.Cable(name, points=pts, bodies=bs, length=sp.sympify(length), tension_name=tension_name,
+                      description=description)
+        self._claim(con.T.name, "reaction")
         return self._add_constraint(con)
 
     # loads -------------------------------------------------------------------------------------
