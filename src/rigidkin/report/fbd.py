@@ -192,6 +192,7 @@ def _draw_body_fbd(ax, geom: Geometry, setup, body, q, out: list) -> None:
     # the surfaces this body touches, faint
     touching = [c.name for c in setup.system.constraints.values() if getattr(c, "body", None) is body]
     draw_surfaces(ax, geom, q, 0.6 * size, alpha=0.45, only=touching)
+    labels: list = []       # where labels are (and named points, which labels keep clear of)
     for p in setup.system.points.values():
         if p.body is body:
             xy = geom.point(p, q)[:2]
@@ -199,9 +200,9 @@ def _draw_body_fbd(ax, geom: Geometry, setup, body, q, out: list) -> None:
                         zorder=8)
             xs.append(xy[0])
             ys.append(xy[1])
+            labels.append(xy)
     torque_radius = 0.28 * size
     drawn: list = []
-    labels: list = []
     for app in setup.applications:
         if app.body is not body:
             continue

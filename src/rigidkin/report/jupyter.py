@@ -8,11 +8,13 @@ events with its figures).  The whole derivation is ``rigidkin.report.build_docum
 
 from __future__ import annotations
 
+import re
+
 from sympy.physics.vector import dynamicsymbols
 
 from .document import Paragraph, Table, answers_blocks, inputs_tables
 from .html import _block, _esc
-from .notation import latex, latex_text
+from .notation import latex
 
 t = dynamicsymbols._t
 
@@ -43,15 +45,20 @@ def system_html(system) -> str:
     return fragment(system.title, blocks + inputs_tables(system) + model_tables(system))
 
 
+def _mathjax_text(s: str) -> str:
+    """Text for ``\\text{...}`` in a notebook (MathJax): TeX's specials escaped, Unicode kept as it is."""
+    return re.sub(r"([#$%&_{}\\])", r"\\\1", s)
+
+
 def system_latex(system) -> str:
-    rows = [rf"{latex(c.symbol)} & \text{{{latex_text(c.sense or c.description or c.kind)}}}"
+    """Coordinates (with their senses) and parameters, one per row, for ``System._repr_latex_``."""
+    rows = [rf"{latex(c.symbol)} & \text{{{_mathjax_text(c.sense or c.description or c.kind)}}}"
             for c in system.coordinate_info.values()]
-    rows += [rf"{latex(p.symbol)} & \text{{{latex_text(p.description or '')}"
-             + (f" ({p.value:g} {latex_text(p.unit)})" if p.value is not None else "") + "}"
+    rows += [rf"{latex(p.symbol)} & \text{{{_mathjax_text(p.description or '')}"
+             + (f" ({p.value:g} {_mathjax_text(p.unit)})" if p.value is not None else "") + "}"
              for p in system.parameter_info.values()]
-    head = rf"\text{{{latex_text(system.title)}}}"
-    return "$\\displaystyle \\begin{array}{ll}\\multicolumn{2}{l}{" + head + "}\\\\ " + " \\\\ ".join(rows) \
-        + "\\end{array}$"
+    head = rf"\text{{{_mathjax_text(system.title)}}} & "
+    return "$\\displaystyle \\begin{array}{ll}" + " \\\\ ".join([head, *rows]) + "\\end{array}$"
 
 
 def solution_html(solution) -> str:
