@@ -172,3 +172,29 @@ def test_system_scope_reads_expressions_about_a_python_model():
     assert parse_vector("l*R.ey + x*Ex", sc) == l * s.frames["R"].y + s.coordinates[1] * s.inertial.x
     assert parse_condition("N_A >= 0", sc).lhs == sp.Symbol("N_A", real=True)
     assert _same(parse_equation("slip(A) = g", sc).rhs, g)
+
+
+def test_numbers_are_in_the_parameter_unit_in_python_and_in_files(tmp_path):
+    import rigidkin as rk
+
+    p = rk.System("units")
+    p.parameter("L0", "cm", value=50)
+    p.parameter("beta", "deg", value=30)
+    p.parameter("k", "N/m", value="3 N/cm")
+    f = tmp_path / "units.toml"
+    f.write_text('''title = "units"
+[parameters]
+L0 = { unit = "cm", value = 50 }
+beta = { unit = "deg", value = 30 }
+k = { unit = "N/m", value = "3 N/cm" }
+[coordinates]
+x = { sense = "along Ex", kind = "length" }
+[points]
+C = { offset = "x*Ex" }
+[bodies]
+b = { shape = "particle", mass = "k*L0", frame = "F", at = "C" }
+''')
+    s, _ = load_problem(f)
+    for name, expect in (("L0", 0.5), ("beta", 3.141592653589793 / 6), ("k", 300.0)):
+        assert p.parameter_info[name].value == pytest.approx(expect)
+        assert s.parameter_info[name].value == pytest.approx(expect)

@@ -22,6 +22,9 @@ def load_system(problem: str):
     from ..io.problem import load_problem
 
     path = Path(problem)
+    if path.suffix == ".toml" and not path.exists() and path.stem in examples.names():
+        raise RigidkinError(f"there is no file {problem}.", where=problem,
+                            hint=f"The bundled example of that name is solved with 'rigidkin solve {path.stem}'.")
     if path.suffix == ".toml" or path.exists():
         return load_problem(path)
     if problem in examples.names():

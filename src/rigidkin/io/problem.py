@@ -211,6 +211,8 @@ def _schema_error(err: dict, more: int, data: dict, locator: Locator) -> InputEr
         if len(shown) > 60:
             shown = shown[:57] + "..."
         message = f"{msg[0].lower() + msg[1:]} (got {shown})"
+    if hint is None:
+        hint = "The fields and their types are listed in rigidkin.io.schema; 'rigidkin list' shows bundled examples."
     if more:
         message += f" ({more} more problem{'s' if more > 1 else ''} in the file; fix this one first)"
     return InputError(message + ".", where=where, hint=hint)
@@ -354,7 +356,8 @@ class _Builder:
                 raise InputError(f"the value {value!r} is neither a number nor a quantity with a unit.",
                                  where=where, hint="Write a number (in the parameter's unit) or a string such as "
                                                    "\"30 deg\".")
-            value = to_si(value, p.unit, where)
+            unit = p.unit if p.unit is not None and p.unit.strip() not in ("", "1", "-") else None
+            to_si(value, unit, where)             # checked here to name the field; System converts it
         sym = self.call(path, self.s.parameter, name, p.unit, p.description, value, p.dimension, p.positive)
         self.scope.names[name] = sym
 
