@@ -41,9 +41,9 @@ from .state import StateLayout, parameter_vector
 t = dynamicsymbols._t
 
 #: Version of the generated code: part of every cache key.
-CODE_VERSION = "1"
+CODE_VERSION = "3"
 BACKENDS = ("auto", "c", "numpy")
-FORMS = ("auto", "explicit", "implicit")
+FORMS = ("auto", "explicit", "mass-matrix", "implicit")
 
 
 class CodegenError(RigidkinError):
@@ -65,15 +65,19 @@ class Kernel:
     outputs: tuple[sp.Expr, ...]           # of args and X
     output_names: tuple[str, ...]
     label: str = ""
+    M: sp.Matrix | None = None             # mass-matrix form of the rates: M·q̈_i = f (reactions from A, b)
+    f: tuple[sp.Expr, ...] = ()
     _cache: dict = field(default_factory=dict, repr=False)
 
     @property
     def args(self) -> list:
-        return self.layout.arguments()
+        if "args" not in self._cache:
+            self._cache["args"] = self.layout.arguments()
+        return self._cache["args"]
 
     @property
     def form(self) -> str:
-        return "explicit" if self.A is None else "implicit"
+        return "explicit" if self.A is None else ("mass-matrix" if self.M is not None else "implicit")
 
     @property
     def ny(self) -> int:
@@ -88,13 +92,13 @@ class Kernel:
         exprs = [self.layout.to_plain(sp.sympify(e)) for e in exprs]
         _check_free(self, exprs)
         return Kernel(self.layout, self.unknowns, self.unknown_names, self.A, self.b, self.rates,
-                      self.outputs + tuple(exprs), self.output_names + tuple(names), self.label)
+                      self.outputs + tuple(exprs), self.output_names + tuple(names), self.label, self.M, self.f)
 
     def key(self) -> str:
         """A hash of the model's numeric content (the cache key of its generated code)."""
         if "key" not in self._cache:
             h = hashlib.sha256(CODE_VERSION.encode())
-            for part in (self.args, self.unknowns, self.A, self.b, self.rates, self.outputs):
+            for part in (self.args, self.unknowns, self.A, self.b, self.rates, self.outputs, self.M, self.f):
                 h.update(sp.srepr(part).encode())
             self._cache["key"] = h.hexdigest()[:24]
         return self._cache["key"]
@@ -120,11 +124,12 @@ def _check_free(kernel: Kernel, exprs) -> None:
 def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "auto") -> Kernel:
     """The kernel of ``system`` in ``mode`` (regime ``regime``), from the solved or the unsolved equations.
 
-    ``form="explicit"`` uses the Solution's solved accelerations and reactions; ``"implicit"`` the
-    Newton–Euler balance equations A·X = b before the symbolic solve (no symbolic solve at all: the
-    route for long chains, whose solved expressions grow without bound); ``"auto"`` uses the solved
-    expressions when the system has already been solved in this mode, and otherwise when the joint
-    system has at most 6 unknowns.
+    ``form="explicit"`` uses the Solution's solved accelerations and reactions; ``"mass-matrix"`` the
+    Solution's mass matrix and forcing (M q̈ = f solved by LU at each call; the reactions from the
+    balance equations, by LU too); ``"implicit"`` the Newton–Euler balance equations A·X = b without
+    any symbolic solve.  ``"auto"``: the mass-matrix form when the Solution left its accelerations
+    unsolved (no reaction does work: long chains, whose solved expressions grow without bound), the
+    explicit form otherwise.
     """
     if form not in FORMS:
         raise CodegenError(f"unknown form '{form}'.", hint=f"Use one of: {', '.join(FORMS)}.")
@@ -136,11 +141,14 @@ def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "au
 
     setup = setup_mode(system, mode)
     if form == "auto":
-        solved = any(isinstance(k, tuple) and k[:1] == ("solution",) and tuple(sorted(mode.items())) in k
-                     for k in system._cache)
-        n_unknowns = len(setup.reduction.independent) + len(setup.reactions)
-        form = "explicit" if solved or n_unknowns <= 6 else "implicit"
-    k = _explicit(system, setup, mode, regime) if form == "explicit" else _implicit(system, setup, regime)
+        reg = system.solve(mode=mode).regime(regime)
+        form = "explicit" if getattr(reg.accelerations, "computed", True) else "mass-matrix"
+    if form == "explicit":
+        k = _explicit(system, setup, mode, regime)
+    elif form == "mass-matrix":
+        k = _mass_matrix(system, setup, mode, regime)
+    else:
+        k = _implicit(system, setup, regime)
     system._cache[key] = k
     return k
 
@@ -178,6 +186,32 @@ def _explicit(system, setup, mode, regime) -> Kernel:
     k = Kernel(layout, tuple(X), tuple(names), None, tuple(b), tuple(rates), tuple(outputs),
                tuple(names[len(red.independent):]), label=system.name)
     _check_free(k, [*b, *rates])
+    return k
+
+
+def _mass_matrix(system, setup, mode, regime) -> Kernel:
+    from ..kinematics import linear_form
+    from ..solution import _determinacy
+
+    sol = system.solve(mode=mode)
+    reg = sol.regime(regime)
+    red = setup.reduction
+    layout = StateLayout.of(system)
+    present = set().union(*[e.expr.free_symbols for e in sol.equations]) if sol.equations else set()
+    reactions = [r for r in setup.reactions if r in present]
+    absent = [r for r in setup.reactions if r not in present]
+    unknowns = [q.diff(t, 2) for q in red.independent] + reactions
+    A, b = linear_form([e.expr.xreplace(dict(reg.signs)) for e in sol.equations], unknowns)
+    keep = _determinacy(A, b, unknowns, [e.label for e in sol.equations])
+    A, b = A.extract(keep, list(range(len(unknowns)))), -b.extract(keep, [0])
+    X, names = _unknown_symbols(red, [str(r) for r in reactions])
+    rates = _rates(layout, red, dict(zip(red.independent, X)))
+    n_acc = len(red.independent)
+    k = Kernel(layout, tuple(X), tuple(names), A.applyfunc(layout.to_plain), tuple(layout.to_plain(e) for e in b),
+               tuple(rates), tuple(X[n_acc:]) + (sp.Integer(0),) * len(absent),
+               tuple(names[n_acc:]) + tuple(str(r) for r in absent), label=system.name,
+               M=reg.mass_matrix.applyfunc(layout.to_plain), f=tuple(layout.to_plain(e) for e in reg.forcing))
+    _check_free(k, [*k.A, *k.b, *rates, *k.M, *k.f])
     return k
 
 
@@ -318,14 +352,29 @@ def c_source(kernel: Kernel) -> str:
         used = set().union(*[sp.sympify(e).free_symbols for e in exprs]) if exprs else set()
         return {i for i, s in enumerate(kernel.unknowns) if s in used}
 
+    def mass_matrix_block(needed_: set) -> list[str]:
+        n = kernel.M.rows
+        if not needed_:
+            return []
+        body = _c_block(list(kernel.M) + list(kernel.f), [f"M[{i}]" for i in range(n * n)]
+                        + [f"X[{i}]" for i in range(n)], names, printer, "v")
+        return [f"    double M[{max(n * n, 1)}];", *body, f"    if (rk_lu_solve({n}, M, X)) return 3;"]
+
     for fname, exprs, target in (("rhs", kernel.rates, "dy"), ("out", kernel.outputs, "o")):
         lines.append(f"static int rk_eval_{fname}(double T, const double *y, const double *p, double *{target}) {{")
         lines.append(f"    double X[{max(nx, 1)}]; (void)X; (void)T; (void)y; (void)p;")
-        lines += unknowns_block(needed(exprs))
+        if fname == "rhs" and kernel.M is not None:
+            lines += mass_matrix_block(needed(exprs))
+        else:
+            lines += unknowns_block(needed(exprs))
         lines += _c_block(exprs, [f"{target}[{i}]" for i in range(len(exprs))], names, printer, "w")
         lines += ["    return 0;", "}"]
     lines.append(r"""
-int rk_rhs(double t, const double *y, const double *p, double *dy) { return rk_eval_rhs(t, y, p, dy); }
+int rk_rhs(double t, const double *y, const double *p, double *dy) {
+    int code = rk_eval_rhs(t, y, p, dy);
+    for (int i = 0; i < RK_NY && !code; i++) if (!isfinite(dy[i])) code = 2;
+    return code;
+}
 int rk_out(double t, const double *y, const double *p, double *o) { return rk_eval_out(t, y, p, o); }
 int rk_rhs_batch(long n, const double *t, const double *y, const double *p, double *dy) {
     int bad = 0;
@@ -519,6 +568,8 @@ class _NumpyFunctions:
             self._outs = sp.lambdify(args, [sp.sympify(e).xreplace(sub) for e in kernel.outputs], "numpy", cse=True)
         else:
             self._Ab = sp.lambdify(args, [list(kernel.A), list(kernel.b)], "numpy", cse=True)
+            if kernel.M is not None:
+                self._Mf = sp.lambdify(args, [list(kernel.M), list(kernel.f)], "numpy", cse=True)
             self._rates = sp.lambdify(args + X, list(kernel.rates), "numpy", cse=True)
             self._outs = sp.lambdify(args + X, list(kernel.outputs), "numpy", cse=True)
 
@@ -534,7 +585,17 @@ class _NumpyFunctions:
 
     def rhs(self, t_, y, p):
         with np.errstate(all="ignore"):
-            return np.array(self._rates(t_, *y, *p, *self._x(t_, y, p)), dtype=float)
+            if self.kernel.M is not None:
+                M, f = self._Mf(t_, *y, *p)
+                n = self.kernel.M.rows
+                try:
+                    acc = np.linalg.solve(np.array(M, dtype=float).reshape(n, n), np.array(f, dtype=float))
+                except np.linalg.LinAlgError:
+                    acc = np.full(n, np.nan)
+                x = (*acc, *[np.nan] * (len(self.kernel.unknowns) - n))
+            else:
+                x = self._x(t_, y, p)
+            return np.array(self._rates(t_, *y, *p, *x), dtype=float)
 
     def outputs(self, t_, y, p):
         with np.errstate(all="ignore"):
@@ -575,6 +636,7 @@ class FastRHS:
         self.params = np.ascontiguousarray(params, dtype=float)
         self.calls = 0
         self.layout = model.kernel.layout
+        self._ny = model.kernel.ny
         if model.lib is not None:
             self._p = model.ffi.from_buffer("double[]", self.params)
             self._f = model.lib.rk_rhs
@@ -586,12 +648,12 @@ class FastRHS:
         if m.lib is not None:
             y = y if (type(y) is np.ndarray and y.dtype == np.float64 and y.flags.c_contiguous) \
                 else np.ascontiguousarray(y, dtype=float)
-            dy = np.empty(m.kernel.ny)
+            dy = np.empty(self._ny)
             code = self._f(t_, self._buf("double[]", y), self._p, self._buf("double[]", dy))
         else:
             dy = m.rhs(t_, y, self.params)
-            code = 0
-        if code or not np.all(np.isfinite(dy)):
+            code = not np.all(np.isfinite(dy))
+        if code:
             from .rhs import SimulationError
 
             state = ", ".join(f"{k} = {v:.6g}" for k, v in self.layout.as_dict(y).items())
@@ -606,9 +668,9 @@ def fast_rhs(system, mode: Mapping | None = None, regime: int = 0, params: Mappi
              form: str = "auto", backend: str = "auto") -> FastRHS:
     """The compiled rhs(t, y) of ``system`` in ``mode``: same state layout and parameters as ``make_rhs``.
 
-    >>> import rigidkin as rk
+    >>> from rigidkin import examples
     >>> from rigidkin.numeric.codegen import fast_rhs
-    >>> f = fast_rhs(rk.examples.build("ladder"))
+    >>> f = fast_rhs(examples.build("ladder"))
     >>> [round(v, 6) for v in f(0.0, [0.5, 1.0, 0.0, 0.0])]    # θ, x, θ̇, ẋ
     [0.0, 0.0, 3.527373, 6.191123]
     """
@@ -667,8 +729,9 @@ class _GenericLayout(StateLayout):
 
 def operation_count(kernel: Kernel) -> int:
     """Operations in the kernel's expressions after common-subexpression elimination (sympy.count_ops)."""
-    exprs = list(kernel.rates) + list(kernel.outputs) + list(kernel.b) + (list(kernel.A) if kernel.A is not None
-                                                                           else [])
+    exprs = list(kernel.rates) + list(kernel.outputs) + list(kernel.b) + list(kernel.f)
+    for mat in (kernel.A, kernel.M):
+        exprs += list(mat) if mat is not None else []
     subs, reduced = sp.cse(exprs, order="none")
     return int(sum(sp.count_ops(e) for _, e in subs) + sum(sp.count_ops(e) for e in reduced))
 

@@ -256,9 +256,10 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
     ``record``: further events recorded without stopping.  ``scheduler``: a Dask scheduler address,
     a ``distributed.Client``, or ``"local"`` (a LocalCluster of ``workers`` processes).
 
-    >>> import rigidkin as rk, numpy as np
+    >>> import numpy as np
+    >>> from rigidkin import examples
     >>> from rigidkin.numeric.sweep import sweep
-    >>> res = sweep(rk.examples.build("ladder"), {"theta": (0.2, 0.6, 3)}, stop_at="N_A")
+    >>> res = sweep(examples.build("ladder"), {"theta": (0.2, 0.6, 3)}, stop_at="N_A")
     >>> np.round(np.cos(res.event_state("N_A", "theta")) / np.cos([0.2, 0.4, 0.6]), 9)   # cos θ = 2/3 cos θ0
     array([0.666666667, 0.666666667, 0.666666667])
     """

@@ -1,0 +1,140 @@
+"""Derivation speed: every bundled example, and a chain of n uniform rods against KanesMethod.
+
+    python benchmarks/derivation.py [--repeats 3] [--max-n 10] [--solve-limit 150]
+
+Examples: ``rigidkin.examples.build(name).solve()`` on a fresh system each run (the solution is
+cached per system), against sympy.physics.mechanics KanesMethod on the same model (rigidkin's
+mode setup handed to KanesMethod by ``laws.mechanics_model``, then ``kanes_equations``).
+Chain: KanesMethod on the chain built here with sympy.physics.mechanics alone, against rigidkin's
+full solve (accelerations and reactions solved symbolically) and against rigidkin's balance
+equations alone (what the implicit generated code needs).  Operation counts are after CSE, of the
+mass matrix and forcing (KanesMethod) and of rigidkin's reaction-free mass matrix and forcing.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from common import TimeLimit, machine, median_time, table
+from models import kane_chain, ops_after_cse
+
+
+def kane_on_model(name: str):
+    """KanesMethod on a bundled example's model (rigidkin's setup, sympy's KanesMethod)."""
+    import sympy as sp
+    from sympy.physics.mechanics import KanesMethod
+    from sympy.physics.vector import dynamicsymbols
+
+    from rigidkin import examples
+    from rigidkin.laws.mechanics_model import build
+    from rigidkin.mode import setup_mode
+
+    t = dynamicsymbols._t
+    setup = setup_mode(examples.build(name))
+    model = build(setup, "forces", "kane")
+    qs = list(setup.system.coordinates)
+    us = [dynamicsymbols(f"u_{q.func.__name__}") for q in qs]
+    to_u = {q.diff(t): u for q, u in zip(qs, us)}
+    ind = set(setup.reduction.independent)
+    u_ind = [u for q, u in zip(qs, us) if q in ind]
+    u_dep = [u for q, u in zip(qs, us) if q not in ind]
+    vc = [sp.sympify(r.velocity).xreplace(to_u) for r in model.rows][:len(u_dep)]
+    km = KanesMethod(model.frame, q_ind=qs, u_ind=u_ind, kd_eqs=[q.diff(t) - u for q, u in zip(qs, us)],
+                     u_dependent=u_dep or None, velocity_constraints=vc or None)
+    km.kanes_equations(model.bodies, model.loads)
+    return km
+
+
+def examples_table(repeats: int, limit: float) -> str:
+    from rigidkin import examples
+
+    rows = []
+    for name in examples.names():
+        if name == "chain":
+            continue
+        try:
+            t_rk, _ = median_time(lambda name=name: examples.build(name).solve(), repeats, limit)
+        except TimeLimit:
+            rows.append([name, f"> {limit:.0f}", None, None, "no"])
+            continue
+        except Exception as exc:  # an example another engineer is still building
+            rows.append([name, f"error: {type(exc).__name__}", None, None, "–"])
+            continue
+        try:
+            t_km, _ = median_time(lambda name=name: kane_on_model(name), repeats, limit)
+            ratio = t_rk / t_km
+        except Exception:
+            t_km = ratio = None
+        rows.append([name, t_rk, t_km, ratio, "yes" if t_rk <= 1.0 else "no"])
+    return table(f"Derivation of every bundled example (CPU s, median of {repeats} fresh runs)",
+                 ["example", "rigidkin solve", "KanesMethod", "ratio", "≤ 1 s"], rows,
+                 "ratio = rigidkin / KanesMethod (< 1: rigidkin faster); KanesMethod gives M, f only "
+                 "(no reactions, not solved), rigidkin gives solved accelerations, reactions, M and f.")
+
+
+def chain_table(ns, repeats: int, solve_limit: float, eq_limit: float) -> str:
+    from rigidkin.examples import chain
+    from rigidkin.laws import newton_euler
+    from rigidkin.mode import setup_mode
+    from rigidkin.numeric.codegen import kernel, operation_count
+
+    rows = []
+    solve_ok = eq_ok = True
+    for n in ns:
+        reps = repeats if n <= 5 else 1
+        t_km, km = median_time(lambda n=n: kane_chain(n)[0], reps)
+        ops_km = ops_after_cse(list(km.mass_matrix) + list(km.forcing))
+        row = [n, t_km, ops_km]
+        if solve_ok:
+            try:
+                t_rk, sol = median_time(lambda n=n: chain.build(n).solve(), reps if n <= 2 else 1, solve_limit)
+                ops_rk = ops_after_cse(list(sol.mass_matrix) + list(sol.forcing))
+                ops_acc = ops_after_cse(list(sol.accelerations.values()))
+                row += [t_rk, t_rk / t_km, ops_rk, ops_acc]
+            except TimeLimit:
+                solve_ok = False
+                row += [f"> {solve_limit:.0f}", None, None, None]
+        else:
+            row += [None] * 4
+        if eq_ok:
+            try:
+                def equations(n=n):
+                    s = chain.build(n)
+                    return s, newton_euler.equations(setup_mode(s))
+                t_eq, (s, _) = median_time(equations, reps, eq_limit)
+                row += [t_eq, t_eq / t_km, operation_count(kernel(s, form="implicit"))]
+            except TimeLimit:
+                eq_ok = False
+                row += [f"> {eq_limit:.0f}", None, None]
+        else:
+            row += [None] * 3
+        rows.append(row)
+        print(f"  chain n={n} done", flush=True)
+    return table("Chain of n rods: derivation time (s) and operations after CSE",
+                 ["n", "Kane t", "Kane ops", "rk solve t", "ratio", "rk M,f ops", "rk q̈ ops", "rk eqs t", "ratio",
+                  "rk A,b ops"], rows,
+                 "Kane: sympy.physics.mechanics KanesMethod built here (mass matrix and forcing, unsolved).\n"
+                 "rk solve: System.solve() (joint symbolic solve of q̈ and reactions, reaction-free M and f).\n"
+                 "rk eqs: the Newton–Euler balance equations only (what the implicit generated code uses; "
+                 "A,b ops include the 2n pin reactions).\nratio = rigidkin / KanesMethod; – = not run "
+                 "(a smaller n already passed the time limit).")
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--max-n", type=int, default=10)
+    ap.add_argument("--solve-limit", type=float, default=150.0, help="seconds for one rigidkin chain solve")
+    ap.add_argument("--eq-limit", type=float, default=120.0)
+    ap.add_argument("--limit", type=float, default=120.0, help="seconds for one example")
+    ap.add_argument("--skip-examples", action="store_true")
+    a = ap.parse_args(argv)
+    print(f"# Derivation speed ({machine()})", flush=True)
+    if not a.skip_examples:
+        print(examples_table(a.repeats, a.limit), flush=True)
+    ns = [n for n in (1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20) if n <= a.max_n]
+    print(chain_table(ns, a.repeats, a.solve_limit, a.eq_limit), flush=True)
+
+
+if __name__ == "__main__":
+    main()
