@@ -497,7 +497,7 @@ class _Builder:
         return "smooth" if mu == 0 else mu
 
     def names(self, c, path):
-        for key in ("normal_name", "friction_name", "couple_name"):
+        for key in ("normal_name", "friction_name", "couple_name", "tension_name"):
             v = getattr(c, key, None)
             if v is not None:
                 check_name(v, "reaction", self.where(*path, key))
@@ -518,12 +518,32 @@ class _Builder:
                       self.point(c.centre, path + ("centre",), True), self.scalar(c.radius, path + ("radius",)),
                       self.friction(c.friction, path + ("friction",)), c.unilateral, c.normal_name,
                       c.friction_name, c.description)
+        elif isinstance(c, S.DiskContactSpec):
+            self._needs("disk_contact", path)
+            surface = self.surface(c.surface, path + ("surface",))
+            self.call(path, self.s.disk_contact, name, self.body(c.body, path + ("body",)), surface,
+                      self.vector(c.axis, path + ("axis",)), self.scalar(c.radius, path + ("radius",)),
+                      self.point(c.centre, path + ("centre",), True), self.friction(c.friction, path + ("friction",)),
+                      c.unilateral, c.normal_name, c.friction_name, c.description)
+        elif isinstance(c, S.CableSpec):
+            self._needs("cable", path)
+            points = [self.point(p, path + ("points", i)) for i, p in enumerate(c.points)]
+            bodies = None
+            if c.bodies is not None:
+                bodies = [self.body(b, path + ("bodies", i), optional=True) if b else None
+                          for i, b in enumerate(c.bodies)]
+            self.call(path, self.s.cable, name, points, self.scalar(c.length, path + ("length",)), bodies,
+                      c.tension_name, c.description)
         else:
             self.call(path, self.s.collar, name, self.body(c.body, path + ("body",)),
                       self.vector(c.along, path + ("along",)), self.point(c.through, path + ("through",), True),
                       self.point(c.point, path + ("point",), True),
                       self.body(c.track_body, path + ("track_body",), True),
                       self.friction(c.friction, path + ("friction",)), c.normal_name, c.couple_name, c.description)
+
+    def _needs(self, method: str, path) -> None:
+        if not hasattr(self.s, method):
+            raise InputError(f"this version of rigidkin has no '{method}' constraint.", where=self.where(*path))
 
     def surface(self, f, path):
         body = self.body(f.body, path + ("body",), True)

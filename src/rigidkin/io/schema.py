@@ -180,7 +180,36 @@ class CollarSpec(Strict):
     description: str = ""
 
 
-ConstraintSpec = Annotated[PinSpec | ContactSpec | CollarSpec, Field(discriminator="type")]
+class DiskContactSpec(Strict):
+    """A thin disk (wheel, coin) of ``radius`` and unit ``axis`` touching a plane at its rim (3D)."""
+
+    type: Literal["disk_contact"]
+    body: Name
+    surface: SurfaceSpec
+    axis: Expr
+    radius: Expr
+    centre: Name | None = None
+    friction: Expr = "smooth"
+    unilateral: bool = True
+    normal_name: Name | None = None
+    friction_name: Name | None = None
+    description: str = ""
+
+
+class CableSpec(Strict):
+    """An inextensible cable through ``points`` (ends and pulleys); ``bodies`` gives each point's body
+    ("" for the ground; default: the body each point is fixed in)."""
+
+    type: Literal["cable"]
+    points: list[Name] = Field(min_length=2)
+    length: Expr
+    bodies: list[str] | None = None
+    tension_name: Name | None = None
+    description: str = ""
+
+
+ConstraintSpec = Annotated[PinSpec | ContactSpec | CollarSpec | DiskContactSpec | CableSpec,
+                           Field(discriminator="type")]
 
 
 # loads ----------------------------------------------------------------------------------------------------
