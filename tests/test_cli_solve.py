@@ -198,3 +198,17 @@ def test_ask_eom_false_leaves_out_the_equations(capsys, tmp_path):
     assert code == 0
     assert "Equations of motion" not in out and "Accelerations" not in out
     assert "N_A = " in out and "leaves_wall" in out
+
+
+def test_time_limit_stops_a_long_step():
+    import time
+
+    from rigidkin.commands.common import TimeLimit, time_limit
+
+    start = time.perf_counter()
+    with pytest.raises(TimeLimit, match="took longer than 0.2 s"), time_limit(0.2, "the busy loop"):
+        while time.perf_counter() - start < 5:
+            sum(range(1000))
+    assert time.perf_counter() - start < 2
+    with time_limit(0, "no limit"):      # 0: no limit
+        pass
