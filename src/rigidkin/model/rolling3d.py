@@ -58,8 +58,11 @@ class DiskContact(Contact):
     def rim_direction(self, kin) -> Vector:
         """û: the unit vector in the disk's plane from the contact point towards the centre."""
         a, n = self.axis, self.normal(kin)
-        in_plane = n - a.dot(n) * a
-        return in_plane / kin.magnitude(in_plane)
+        an = a.dot(n)
+        in_plane = n - an * a
+        if sp.count_ops(an) <= 60:
+            return in_plane / kin.magnitude(in_plane)     # readable (cos θ), its sign settled
+        return in_plane / sp.sqrt(1 - an**2)              # |n − (a·n) a|² = 1 − (a·n)² for unit a, n
 
     def location(self, kin) -> Vector:
         return kin.position(self.centre) - self.radius * self.rim_direction(kin)
