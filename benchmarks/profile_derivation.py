@@ -1,0 +1,64 @@
+"""Where derivation time goes: cProfile of ``solve()`` for a chain of rods and for chosen examples.
+
+    python benchmarks/profile_derivation.py [--chain 4] [--examples torque-free gyroscope]
+
+For each model: the rigidkin functions with the largest cumulative time, and the functions (sympy
+included) with the largest own time.  The findings and proposals are in benchmarks/README.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import cProfile
+import io
+import pstats
+
+from common import machine
+
+
+def profile(label: str, build, top: int = 14) -> str:
+    system = build()
+    pr = cProfile.Profile()
+    pr.enable()
+    sol = system.solve()
+    for r in sol.regimes:           # what code generation asks for: M and f, the reactions lazily
+        _ = r.mass_matrix, r.forcing
+    pr.disable()
+    st = pstats.Stats(pr)
+    total = st.total_tt
+    out = io.StringIO()
+    out.write(f"\n## {label}: {total:.2f} s under the profiler\n")
+    rows = []
+    for (fname, line, func), (_cc, nc, tt, ct, _callers) in st.stats.items():
+        rows.append((ct, tt, nc, fname, line, func))
+    mine = sorted((r for r in rows if "/rigidkin/" in r[3]), reverse=True)[:top]
+    out.write("cumulative s  own s     calls  rigidkin function\n")
+    for ct, tt, nc, fname, line, func in mine:
+        out.write(f"{ct:12.3f} {tt:6.3f} {nc:9d}  {fname.split('/rigidkin/')[-1]}:{line} {func}\n")
+    own = sorted(rows, key=lambda r: -r[1])[:top]
+    out.write("own s   cumulative s     calls  function (any package)\n")
+    for ct, tt, nc, fname, line, func in own:
+        short = fname.split("site-packages/")[-1].split("/rigidkin/")[-1]
+        out.write(f"{tt:6.3f} {ct:12.3f} {nc:9d}  {short}:{line} {func}\n")
+    return out.getvalue()
+
+
+def main(argv=None) -> None:
+    from rigidkin import examples
+    from rigidkin.examples import chain
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--chain", type=int, default=4)
+    ap.add_argument("--examples", nargs="*", default=["torque-free", "boulder-push"])
+    a = ap.parse_args(argv)
+    print(f"# Derivation profile ({machine()})", flush=True)
+    print(profile(f"chain of {a.chain} rods", lambda: chain.build(a.chain)), flush=True)
+    for name in a.examples:
+        try:
+            print(profile(name, lambda name=name: examples.build(name)), flush=True)
+        except Exception as exc:
+            print(f"\n## {name}: {type(exc).__name__}: {exc}")
+
+
+if __name__ == "__main__":
+    main()
