@@ -302,6 +302,8 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
             return dict(zip(red.independent, solve_square(M, f, simplify=kin.simplify_expr)))
 
         def solved_reactions():
+            if not reactions:          # a free body: no reaction to solve for
+                return {str(r): sp.Integer(0) for r in missing}
             acc = accel_map
             rhs = -b - A.extract(list(range(A.rows)), list(range(len(accel_syms)))) * sp.Matrix(
                 [acc[q] for q in red.independent])
