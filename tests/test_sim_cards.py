@@ -147,7 +147,6 @@ def test_billiard_ball_starts_rolling_at_2v0_over_7mug():
 
 
 # sphere on sphere ------------------------------------------------------------------------------------
-@pytest.mark.slow
 def test_sphere_on_sphere_leaves_at_cos_10_17_and_flies_as_a_projectile():
     s = build("sphere-on-sphere")
     r = simulate(s, 7.2)
