@@ -179,3 +179,37 @@ def test_cli_report_errors_are_one_paragraph(argv, words, capsys, tmp_path, monk
     err = capsys.readouterr().err
     assert err.startswith("rigidkin: ") and words in err
     assert "Traceback" not in err
+
+
+# cross-check ----------------------------------------------------------------------------------------
+def test_check_section_shows_each_verdict_and_a_disagreement_with_both_forms():
+    from types import SimpleNamespace
+
+    from rigidkin.report.document import Math, Paragraph, Table, check_table
+
+    th = dynamicsymbols("theta")
+    good = SimpleNamespace(law="kane", equation="θ̈", status="agrees", how="symbolic: identical", ours=None,
+                           reference=None)
+    bad = SimpleNamespace(law="lagrange", equation="θ̈", status="disagrees", how="numerical at 24 states",
+                          ours=2 * sp.sin(th), reference=3 * sp.sin(th))
+    report = SimpleNamespace(verdicts=(good, bad), reference="newton-euler", ok=False, dimensions=(),
+                             expectations=(), notes=("a note",))
+    blocks = check_table(report)
+    assert "DISAGREEMENT" in blocks[0].text
+    table = next(b for b in blocks if isinstance(b, Table))
+    assert table.rows == (("kane", "θ̈", "agrees", "symbolic: identical"),
+                          ("lagrange", "θ̈", "disagrees", "numerical at 24 states"))
+    eqs = next(b for b in blocks if isinstance(b, Equations))
+    assert eqs.items == (Math(2 * sp.sin(th)), Math(3 * sp.sin(th)))
+    assert isinstance(blocks[-1], Paragraph) and blocks[-1].text == "a note"
+
+
+@pytest.mark.skipif(not hasattr(rk.Solution, "check"), reason="Solution.check (the cross-check) is not available")
+def test_check_section_is_the_solutions_cross_check(ladder):
+    from rigidkin.report.document import Table
+
+    doc = build_document(ladder, figures=False, checks=True)
+    tables = [b for b in doc.section("checks").blocks if isinstance(b, Table)]
+    verdicts = ladder.check().verdicts
+    assert [r[:3] for r in tables[0].rows] == [(v.law, v.equation, v.status) for v in verdicts]
+    assert {r[2] for r in tables[0].rows} == {"agrees"}      # every law agrees on the ladder

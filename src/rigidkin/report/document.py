@@ -197,38 +197,38 @@ def check_blocks(solution) -> list:
     return check_table(result)
 
 
-def _cell(v):
-    if isinstance(v, (sp.Basic,)):
-        return Math(v)
-    return str(v)
-
-
 def check_table(result) -> list:
-    """A table from a cross-check result: rows of (law, equation, verdict, how decided)."""
-    rows = getattr(result, "rows", None)
-    if rows is None and isinstance(result, (list, tuple)):
-        rows = result
-    if rows is None:
+    """Blocks from a cross-check report (``rigidkin.laws.crosscheck.CheckReport``): the law × equation
+    verdicts and how each was decided, the disagreements with both forms, the dimensions of every equation."""
+    verdicts = getattr(result, "verdicts", None)
+    if verdicts is None:
         return [Paragraph(str(result))]
-    out = []
-    for r in rows:
-        if isinstance(r, dict):
-            out.append(tuple(_cell(v) for v in r.values()))
-            columns = tuple(str(k).capitalize() for k in r)
-        elif hasattr(r, "__dataclass_fields__"):
-            names = [f for f in r.__dataclass_fields__ if not f.startswith("_")]
-            out.append(tuple(_cell(getattr(r, f)) for f in names))
-            columns = tuple(n.replace("_", " ").capitalize() for n in names)
-        else:
-            out.append(tuple(_cell(v) for v in r))
-            columns = tuple(f"{i + 1}" for i in range(len(r)))
-    if not out:
-        return [Paragraph("The cross-check found no other law that applies.")]
-    blocks = [Table(columns, tuple(out), "Cross-check: the equations of motion by every law that applies")]
-    summary = getattr(result, "summary", None)
-    if summary:
-        blocks.insert(0, Paragraph(str(summary() if callable(summary) else summary)))
-    return blocks
+    reference = getattr(result, "reference", "the reference law")
+    ok = getattr(result, "ok", None)
+    out = [Paragraph(f"Every other law that applies, against {reference}"
+                     + (": all agree." if ok else ": DISAGREEMENT FOUND." if ok is False else "."))]
+    if verdicts:
+        out.append(Table(("Law", "Equation", "Result", "How decided"),
+                         tuple((v.law, v.equation, v.status, v.how) for v in verdicts),
+                         "Cross-check: the equations of motion by every law"))
+    else:
+        out.append(Paragraph("No other law applies to this model."))
+    for v in verdicts:
+        if getattr(v, "status", "") == "disagrees" and v.ours is not None and v.reference is not None:
+            out.append(Paragraph(f"{v.law} disagrees on {v.equation}: {v.law} (first), {reference} (second)."))
+            out.append(Equations((Math(v.ours), Math(v.reference))))
+    dims = getattr(result, "dimensions", ())
+    if dims:
+        rows = tuple((d.label, str(d.dimension) if d.consistent else "—",
+                      "consistent" if d.consistent else str(d)) for d in dims)
+        good = sum(1 for d in dims if d.consistent)
+        out.append(Table(("Equation", "Dimension of every term", "Verdict"), rows,
+                         f"Dimensions: {good} of {len(dims)} equations consistent"))
+    for e in getattr(result, "expectations", ()):
+        out.append(Paragraph(e.describe()))
+    for note in getattr(result, "notes", ()):
+        out.append(Paragraph(str(note)))
+    return out
 
 
 def build_document(solution, simulation=None, answers=None, figures: bool = True, animation: bool = True,
