@@ -57,12 +57,18 @@ class DiskContact(Contact):
 
     def rim_direction(self, kin) -> Vector:
         """û: the unit vector in the disk's plane from the contact point towards the centre."""
+        cache = kin.__dict__.setdefault("_rim_directions", {})
+        if self.name in cache:
+            return cache[self.name]
         a, n = self.axis, self.normal(kin)
         an = a.dot(n)
         in_plane = n - an * a
-        if sp.count_ops(an) <= 60:
-            return in_plane / kin.magnitude(in_plane)     # readable (cos θ), its sign settled
-        return in_plane / sp.sqrt(1 - an**2)              # |n − (a·n) a|² = 1 − (a·n)² for unit a, n
+        if sp.count_ops(an) <= 8:
+            u = in_plane / kin.magnitude(in_plane)        # readable (cos θ), its sign settled
+        else:
+            u = in_plane / sp.sqrt(1 - an**2)             # |n − (a·n) a|² = 1 − (a·n)² for unit a, n
+        cache[self.name] = u
+        return u
 
     def location(self, kin) -> Vector:
         return kin.position(self.centre) - self.radius * self.rim_direction(kin)

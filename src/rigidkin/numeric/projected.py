@@ -152,8 +152,7 @@ class ProjectedModel:
                                  where=f"body {body.name}")
             G = body.centre
             w = kin.omega_of(body)
-            pv = self._partial(kin.velocity(G))
-            pw = self._partial(w)
+            pv, pw = self._body_partials(body)
             I = body.inertia
             a0 = algebra.substitute(kin.acceleration(G), zero_acc)
             h0 = I.dot(algebra.substitute(kin.alpha(body.frame), zero_acc)) + w.cross(I.dot(w))
@@ -186,15 +185,20 @@ class ProjectedModel:
                                 "coordinate, a rate, time nor a parameter.", where=system.name)
         self._fn = {}
         self.values = self._values(values)
-        self._check_workless()
+        self._checked = False
 
     # symbolic helpers ---------------------------------------------------------------------------
     def _sym(self, M) -> sp.Matrix:
-        """q(t), q̇ → plain symbols; t → _t."""
-        M = sp.Matrix(M)
-        M = M.xreplace({u: s for u, s in self._plain.items() if isinstance(u, sp.Derivative)})
-        M = M.xreplace({q: s for q, s in self._plain.items() if not isinstance(q, sp.Derivative)})
-        return M.xreplace({t: self._args[0]})
+        """q(t), q̇ → plain symbols; t → _t (one pass: xreplace meets q̇ before the q inside it)."""
+        return sp.Matrix(M).xreplace({**self._plain, t: self._args[0]})
+
+    def _body_partials(self, body) -> tuple[list, list]:
+        """Partial velocities of the mass centre and partial angular velocities of ``body``."""
+        key = ("body", body.name)
+        if key not in self._partials_cache:
+            self._partials_cache[key] = (self._partial(self.kin.velocity(body.centre)),
+                                         self._partial(self.kin.omega_of(body)))
+        return self._partials_cache[key]
 
     def _partial(self, vel) -> list:
         """Partial velocities ∂vel/∂q̇_j (vectors, differentiated component by component in their frames)."""
@@ -206,11 +210,18 @@ class ProjectedModel:
         kin = self.kin
         if app.is_torque:
             key = ("ω", app.body.name)
-            make = lambda: self._partial(kin.omega_of(app.body))  # noqa: E731
+
+            def make():
+                return self._body_partials(app.body)[1]
         else:
             loc = app.location if app.location is not None else kin.position(app.point)
             key = (app.body.name, app.point.name if app.location is None else id(app.location))
-            make = lambda: self._partial(kin.material_velocity(app.body, loc))  # noqa: E731
+
+            def make():
+                # v_P = v_G + ω × (r_P − r_G): ∂v_P/∂q̇ = ∂v_G/∂q̇ + ∂ω/∂q̇ × (r_P − r_G), r_P free of rates
+                pv, pw = self._body_partials(app.body)
+                r = loc - kin.position(app.body.centre)
+                return [a + b.cross(r) if b != 0 else a for a, b in zip(pv, pw)]
         if key not in self._partials_cache:
             self._partials_cache[key] = make()
         vec = app.vector if vector is None else vector
@@ -259,6 +270,13 @@ class ProjectedModel:
         return [float(vals[p]) for p in self.parameters]
 
     def _raw(self, kind, t_, q, u, p):
+        if not self._checked:
+            self._checked = True          # (the check itself evaluates the pieces)
+            try:
+                self._check_workless()
+            except ModelError:
+                self._checked = False
+                raise
         out = list(self._function(kind)(t_, *q, *u, *p))
         if kind != "mpmath":
             out = [np.array(o, dtype=float) for o in out]
@@ -368,7 +386,8 @@ class ProjectedModel:
 
     # checks -------------------------------------------------------------------------------------
     def _check_workless(self) -> None:
-        """Every reaction's generalised force, projected on the independent rates, must vanish."""
+        """Every reaction's generalised force, projected on the independent rates, must vanish (checked
+        at two random states before the first numeric result is given)."""
         rng = random.Random(9)
         n = len(self.coordinates)
         for _ in range(2):
