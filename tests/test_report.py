@@ -213,3 +213,24 @@ def test_check_section_is_the_solutions_cross_check(ladder):
     verdicts = ladder.check().verdicts
     assert [r[:3] for r in tables[0].rows] == [(v.law, v.equation, v.status) for v in verdicts]
     assert {r[2] for r in tables[0].rows} == {"agrees"}      # every law agrees on the ladder
+
+
+def test_cli_report_answers_the_files_questions(tmp_path):
+    """Card ladder (b): released from rest upright, the rod leaves the wall at θ = arccos(2/3)."""
+    from pathlib import Path
+
+    problem = Path(__file__).resolve().parents[1] / "examples" / "ladder.toml"
+    out = tmp_path / "ladder.html"
+    assert main(["report", str(problem), "-o", str(out), "--no-figures", "--no-checks"]) == 0
+    page = out.read_text()
+    row = re.search(r"<tr><td>leaves_wall</td>.*?</tr>", page, flags=re.S).group(0)
+    math = re.search(r"<math .*?</math>", row, flags=re.S).group(0)
+    assert re.sub(r"\s", "", math).count("<mi>arccos</mi>") == 1
+    assert "<mfrac><mn>2</mn><mn>3</mn></mfrac>" in math
+    assert "48.19°" in row
+
+
+def test_cli_report_stops_at_its_time_limit(tmp_path, capsys):
+    assert main(["report", "collar-rod", "-o", str(tmp_path / "x.html"), "--timeout", "0.001"]) == 2
+    err = capsys.readouterr().err
+    assert "took longer than 0.001 s" in err and "Traceback" not in err

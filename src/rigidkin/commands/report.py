@@ -31,6 +31,10 @@ def register(sub) -> None:
     p.add_argument("--no-figures", action="store_true", help="leave out the figures and the animation")
     p.add_argument("--no-animation", action="store_true", help="leave out the animation")
     p.add_argument("--no-checks", action="store_true", help="do not run the cross-check by other laws")
+    p.add_argument("--no-answers", action="store_true", help="do not answer the problem file's questions")
+    p.add_argument("--timeout", type=float, default=600, metavar="SECONDS",
+                   help="stop a step (derivation, an answer, the cross-check, the simulation) that takes longer "
+                        "(default 600; 0: no limit)")
     p.set_defaults(func=run)
 
 
@@ -51,22 +55,12 @@ def _numbers(pairs: dict, what: str) -> dict:
     return {k: to_si(v, None, f"{what} {k}") for k, v in pairs.items()}
 
 
-def _questions(spec) -> list:
-    """The questions of a problem file's [ask] section, when the reader provides them."""
-    if spec is None:
-        return []
-    for attr in ("questions", "ask"):
-        q = getattr(spec, attr, None)
-        q = q() if callable(q) else q
-        if q and all(hasattr(x, "kind") and hasattr(x, "name") for x in q):
-            return list(q)
-    return []
-
-
 def run(args) -> int:
+    from ..errors import RigidkinError
     from ..report.document import Animation, build_document
     from ..report.output import format_of, write_document
-    from .common import load_system
+    from .common import guarded, load_system, progress, time_limit, with_file
+    from .solve import answer_questions
 
     fmt = format_of(args.output)
     if args.gif and args.simulate is None:
@@ -74,31 +68,35 @@ def run(args) -> int:
                          hint="Add --simulate T (seconds).")
     if args.simulate is not None and not args.simulate > 0:
         raise InputError(f"--simulate needs a positive end time, not {args.simulate}.", where="report --simulate")
-    system, spec = load_system(args.problem)
-    mode = _pairs(args.mode, "report --mode")
-    at = _numbers(_pairs(args.at, "report --at"), "report --at")
-    solution = system.solve(method=args.method, mode=mode)
-    answers = None
-    questions = _questions(spec)
-    if questions:
-        from ..analysis.answers import answer_all
-
-        answers = answer_all(system, questions)
-    params = _pairs(args.set, "report --set")
-    result = None
-    if args.simulate is not None:
-        from ..numeric.simulate import simulate
-
-        result = simulate(system, (0.0, args.simulate), initial_state=_pairs(args.initial, "report --initial") or None,
-                          params=params or None)
-    elif args.initial:
+    if args.initial and args.simulate is None:
         raise InputError("--initial sets the start of a simulation.", where="report --initial",
                          hint="Add --simulate T (seconds).")
-    figures = not args.no_figures
-    animate = figures and not args.no_animation
-    doc = build_document(solution, simulation=result, answers=answers, figures=figures, animation=animate,
-                         checks=not args.no_checks, values=at or None, gif=fmt != "html" or bool(args.gif),
-                         parameters=_numbers(params, "report --set") or None)
+    mode = _pairs(args.mode, "report --mode")
+    at = _numbers(_pairs(args.at, "report --at"), "report --at")
+    params = _pairs(args.set, "report --set")
+    initial = _pairs(args.initial, "report --initial")
+    with progress(f"Reading {args.problem}"):
+        system, spec = guarded(args, load_system, args.problem)
+    try:
+        with progress(f"Deriving the equations of motion ({args.method})"), time_limit(args.timeout, "the derivation"):
+            solution = guarded(args, system.solve, method=args.method, mode=mode)
+        answers, _ = answer_questions(system, spec, args)
+        result = None
+        if args.simulate is not None:
+            from ..numeric.simulate import simulate
+
+            with progress(f"Simulating to t = {args.simulate:g} s"), time_limit(args.timeout, "the simulation"):
+                result = guarded(args, simulate, system, (0.0, args.simulate), initial_state=initial or None,
+                                 params=params or None)
+        figures = not args.no_figures
+        with progress("Writing the report (figures, cross-check, animation)"), \
+                time_limit(args.timeout, "the report (figures, cross-check, animation)"):
+            doc = guarded(args, build_document, solution, simulation=result, answers=answers, figures=figures,
+                          animation=figures and not args.no_animation, checks=not args.no_checks,
+                          values=at or None, gif=fmt != "html" or bool(args.gif),
+                          parameters=_numbers(params, "report --set") or None)
+    except RigidkinError as exc:
+        raise with_file(exc, spec) from None
     path = write_document(doc, args.output)
     print(f"wrote {path}")
     if args.gif:

@@ -173,15 +173,19 @@ def answers_blocks(solution) -> list:
 
 
 def answer_blocks(answers) -> list:
-    """Answers to the problem's questions (``rigidkin.analysis`` Answer objects)."""
+    """Answers to the problem's questions: name → ``rigidkin.analysis`` Answer, or the reason it has none."""
     if not answers:
         return []
+    items = answers.items() if isinstance(answers, dict) else ((a.question.name, a) for a in answers)
     rows = []
-    for a in answers:
+    for name, a in items:
+        if isinstance(a, str):
+            rows.append((name, "", "not answered", "", a))
+            continue
         value = a.value
         cell = Math(value) if isinstance(value, sp.Basic) and not isinstance(value, sp.Tuple) else a.text
         note = a.note or ("exact" if a.exact else f"numerical (tolerance {a.tolerance:g})" if a.tolerance else "")
-        rows.append((a.question.name, a.question.kind, cell, a.text if isinstance(cell, Math) else "", note))
+        rows.append((name, a.question.kind, cell, a.text if isinstance(cell, Math) else "", note))
     return [Table(("Question", "Kind", "Answer", "Reading", "Note"), tuple(rows), "Answers to the questions asked")]
 
 
@@ -236,6 +240,7 @@ def build_document(solution, simulation=None, answers=None, figures: bool = True
                    parameters=None) -> Document:
     """The report of ``solution`` (and of a simulation result, if given) as a Document.
 
+    ``answers`` are the answers to the problem's questions (name → Answer, or the reason there is none);
     ``figures`` draws the free-body diagrams (and, with a simulation, its plots); ``animation`` adds an
     animation of the simulated motion (``frames`` frames; with ``gif`` also as a GIF); ``checks`` runs
     the cross-check; ``values`` is the configuration the free-body diagrams are drawn in (default: the
