@@ -202,3 +202,25 @@ def test_c_source_uses_products_for_small_powers(ladder):
     src = codegen.c_source(codegen.kernel(ladder))
     assert "pow(" not in src and "rk_eval_rhs" in src
     assert os.environ["RIGIDKIN_CACHE"]
+
+
+@pytest.mark.skipif(not codegen.c_available(), reason="no C compiler")
+def test_simulator_with_the_c_backend_gives_the_same_motion():
+    """rigidkin.numeric.rhs.use_backend(codegen.c_backend): the simulator's functions in C, same events."""
+    from rigidkin.numeric import rhs, simulate
+
+    th0 = 0.2
+    runs = {}
+    try:
+        for backend in (None, codegen.c_backend):
+            rhs.use_backend(backend)
+            res = simulate(rk.examples.build("ladder"), 1.5, initial_state={"theta": th0})
+            ev = next(e for e in res.events if e.contact == "A")
+            runs[backend] = (ev.t, ev.state["theta"], res.final_state)
+    finally:
+        rhs.use_backend(None)
+    (t_a, th_a, end_a), (t_b, th_b, end_b) = runs.values()
+    assert th_b == pytest.approx(math.acos(2 / 3 * math.cos(th0)), abs=1e-10)
+    assert t_b == pytest.approx(t_a, abs=1e-10)
+    for k in end_a:
+        assert end_b[k] == pytest.approx(end_a[k], abs=1e-8)

@@ -685,7 +685,7 @@ def c_backend(args: Sequence[sp.Symbol], exprs: Sequence[sp.Expr]) -> Callable:
     """
     args = list(args)
     exprs = [sp.sympify(e) for e in exprs]
-    if not c_available():
+    if not c_available() or len(args) < 2 or not exprs:
         return sp.lambdify(args, exprs, modules="numpy", cse=True)
     T = args[0]
     rest = args[1:]
@@ -699,11 +699,23 @@ def c_backend(args: Sequence[sp.Symbol], exprs: Sequence[sp.Expr]) -> Callable:
     n_out = len(exprs)
     ffi, lib = model.ffi, model.lib
 
+    n_y = len(rest)
+
     def f(*values):
-        y = np.array(values[1:], dtype=float)
-        o = np.empty(max(n_out, 1))
-        lib.rk_out(float(values[0]), ffi.from_buffer("double[]", y), ffi.NULL, ffi.from_buffer("double[]", o))
-        return o[:n_out]
+        if all(isinstance(v, (float, int, np.floating, np.integer)) for v in values):
+            y = np.array(values[1:], dtype=float)
+            o = np.empty(max(n_out, 1))
+            lib.rk_out(float(values[0]), ffi.from_buffer("double[]", y), ffi.NULL, ffi.from_buffer("double[]", o))
+            return o[:n_out]
+        arrays = np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in values])   # vectorised call
+        shape = arrays[0].shape
+        T = np.ascontiguousarray(arrays[0].ravel())
+        Y = np.ascontiguousarray(np.stack([a.ravel() for a in arrays[1:]], axis=1)) if n_y else np.zeros((T.size, 1))
+        O = np.empty((T.size, max(n_out, 1)))
+        P = np.zeros((T.size, 1))
+        lib.rk_out_batch(T.size, ffi.from_buffer("double[]", T), ffi.from_buffer("double[]", Y),
+                         ffi.from_buffer("double[]", P), ffi.from_buffer("double[]", O))
+        return [O[:, i].reshape(shape) for i in range(n_out)]
 
     return f
 
