@@ -212,3 +212,15 @@ def test_time_limit_stops_a_long_step():
     assert time.perf_counter() - start < 2
     with time_limit(0, "no limit"):      # 0: no limit
         pass
+
+
+def test_json_impulse_answers_read_back(capsys):
+    """rod-impulse: ω' = 6 F̂/(m l) just after the blow (card a), θ_max = F̂ sqrt(3/(m K)) (card b)."""
+    code, out, _ = run_cli(capsys, "solve", "rod-impulse", "--format", "json")
+    assert code == 0
+    data = json.loads(out)
+    F, m, l, K = sp.symbols("F_hat m l K")
+    th = sp.Function("theta")(sp.Symbol("t"))
+    after = read_back(data, data["answers"]["after_blow"])
+    assert isinstance(after, dict) and agree(after[th.diff(sp.Symbol("t"))], 6 * F / (m * l))
+    assert agree(read_back(data, data["answers"]["largest_angle"]), F * sp.sqrt(3 / (m * K)))

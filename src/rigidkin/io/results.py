@@ -42,6 +42,8 @@ def answer_value(answer) -> str:
         return _s(v)
     if isinstance(v, tuple | list) and v and all(isinstance(x, sp.Basic) for x in v):
         return _s(list(v))
+    if isinstance(v, dict) and v and all(isinstance(x, sp.Basic) for x in (*v.keys(), *v.values())):
+        return _s(dict(v))          # e.g. the rates just after an impulse: {Derivative(theta(t), t): ...}
     return answer.text
 
 
