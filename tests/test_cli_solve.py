@@ -224,3 +224,16 @@ def test_json_impulse_answers_read_back(capsys):
     after = read_back(data, data["answers"]["after_blow"])
     assert isinstance(after, dict) and agree(after[th.diff(sp.Symbol("t"))], 6 * F / (m * l))
     assert agree(read_back(data, data["answers"]["largest_angle"]), F * sp.sqrt(3 / (m * K)))
+
+
+def test_method_option_reaches_the_law(capsys):
+    """--method lagrange derives the ladder's equation of motion by Lagrange's method: the card's θ̈."""
+    code, out, _ = run_cli(capsys, "solve", "ladder", "--method", "lagrange", "--format", "json", "--no-answers")
+    assert code == 0
+    data = json.loads(out)
+    g, l = sp.symbols("g l")
+    th = sp.Function("theta")(sp.Symbol("t"))
+    assert data["method"] == "lagrange"
+    assert agree(read_back(data, data["accelerations"]["theta"]), 3 * g * sp.sin(th) / (2 * l))
+    code, _, err = run_cli(capsys, "solve", "ladder", "--method", "guesswork")
+    assert code == 2 and "unknown method 'guesswork'" in err and "ladder.toml" in err

@@ -8,7 +8,13 @@ import json
 def register(sub) -> None:
     p = sub.add_parser("solve", help="derive the equations of motion, reactions and answers")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
-    p.add_argument("--method", default="newton-euler", help="the balance law to derive with (default: newton-euler)")
+    try:
+        from ..laws import METHODS
+    except ImportError:            # pragma: no cover - the laws package is part of rigidkin
+        METHODS = ("newton-euler",)
+    p.add_argument("--method", default="newton-euler",
+                   help=f"the balance law to derive with: {', '.join(METHODS)} (about-point:POINT names the point; "
+                        "default newton-euler)")
     p.add_argument("--format", default="text", choices=("text", "latex", "json"), help="output format")
     p.add_argument("--no-answers", action="store_true", help="skip the questions in the file's [ask]")
     p.add_argument("--timeout", type=float, default=600, metavar="SECONDS",
