@@ -130,3 +130,21 @@ def test_every_example_draws(name):
         assert fbd.png(dpi=40)[:4] == b"\x89PNG"
     finally:
         fbd.close()
+
+
+def test_a_3d_model_is_seen_from_the_side_with_gravity_down():
+    """The heavy top (gravity along −Ez): weights point down the screen, and the mass centre, at l from the
+    fixed tip along the tilted axis, is drawn above the tip at l cos θ."""
+    system = examples.build("heavy-top")
+    fbd = free_body_diagram(system)
+    try:
+        weight = next(d for d in fbd.loads if d.source == "gravity")
+        np.testing.assert_allclose(weight.direction, (0, -1), atol=1e-12)
+        geom = Geometry(system)
+        q = geom.configuration()
+        th = next(v for k, v in q.items() if str(k).startswith("theta"))
+        rise = geom.point(next(b for b in system.bodies.values()).centre, q)[1] - geom.point("O", q)[1]
+        l = geom.number(system.parameters["l"])
+        assert rise == pytest.approx(l * np.cos(th), abs=1e-12)
+    finally:
+        fbd.close()

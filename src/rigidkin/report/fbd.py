@@ -84,17 +84,17 @@ def mathtext(obj) -> str:
         return plain_text(obj)
 
 
-def _magnitude_label(app, setup) -> tuple[str, sp.Expr | None]:
-    """The label of a force (its magnitude when it acts along one basis vector) and the sign to draw it with."""
+def _magnitude_label(app, setup) -> str:
+    """A force's label: its reaction symbol, its magnitude when it acts along one basis vector, else its load."""
     terms = _vector_terms(app.vector)
     if app.reaction is not None:
-        return mathtext(app.reaction), None
+        return mathtext(app.reaction)
     if len(terms) == 1:
         comp = terms[0][0]
         if comp.could_extract_minus_sign():
             comp = -comp
-        return mathtext(setup.scalar(comp)), None
-    return app.source, None
+        return mathtext(setup.scalar(comp))
+    return app.source
 
 
 def _direction(geom: Geometry, app, q, extra) -> np.ndarray | None:
@@ -115,19 +115,6 @@ def _application_point(geom: Geometry, app, q) -> np.ndarray:
     return geom.point(app.body.centre, q)
 
 
-def _unknown_values(app, setup) -> dict:
-    """Reactions at +1 (the sense their symbol is positive), friction signs at +1, other unknowns at 1."""
-    extra = {}
-    for s in app.vector.free_symbols if hasattr(app.vector, "free_symbols") else ():
-        if s not in setup.system.parameters.values() and s != sp.Symbol("t"):
-            extra[s] = 1.0
-    if app.reaction is not None:
-        extra[app.reaction] = 1.0
-    for sc in setup.sign_choices:
-        extra.setdefault(sc.symbol, 1.0)
-    return extra
-
-
 def _free_symbols(v) -> set:
     out = set()
     for measure, _frame in v.args:
@@ -138,7 +125,7 @@ def _free_symbols(v) -> set:
 
 def _draw_torque(ax, centre, sense, radius, colour, label, reaction):
     start, end = (200, 500) if sense > 0 else (500, 200)
-    th = np.radians(np.linspace(start, end, 40) % 360 if False else np.linspace(start, end, 40))
+    th = np.radians(np.linspace(start, end, 40))
     pts = centre[None, :] + radius * np.c_[np.cos(th), np.sin(th)]
     ax.plot(pts[:-3, 0], pts[:-3, 1], color=colour, lw=2, ls="--" if reaction else "-", zorder=5)
     ax.add_patch(patches.FancyArrowPatch(pts[-4], pts[-1], arrowstyle="-|>", mutation_scale=16, color=colour,
@@ -209,7 +196,7 @@ def _draw_body_fbd(ax, geom: Geometry, setup, body, q, out: list) -> None:
         extra = {s: 1.0 for s in _free_symbols(app.vector) if s not in set(setup.system.parameters.values())}
         if app.reaction is not None:
             extra[app.reaction] = 1.0
-        label, _ = _magnitude_label(app, setup)
+        label = _magnitude_label(app, setup)
         reaction = app.reaction is not None
         colour = REACTION if reaction else APPLIED
         v = _direction(geom, app, q, extra)

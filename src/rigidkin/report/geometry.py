@@ -36,6 +36,9 @@ def _key(system, k):
 class Geometry:
     """Numeric positions and orientations of a system's points and bodies (parameters at their values).
 
+    Components are in the inertial basis for a planar model; a 3D model is seen from the side, with
+    gravity pointing down the screen (``view``: the rows are the screen's right, up and depth).
+
     ``values`` overrides parameter values (symbol or name → number); a parameter without a value is
     drawn at 1 and listed in ``assumed``.
     """
@@ -64,6 +67,7 @@ class Geometry:
         self._qmap = dict(zip(self.coordinates, self._qsyms))
         self._args = [*self._qsyms, self._tsym]
         kin = self.setup.kin
+        self.view = np.eye(3) if kin.planar else self._view()
         self._points = {}
         for name, p in system.points.items():
             self._points[name] = self._lambdify(kin.position(p))
@@ -71,6 +75,20 @@ class Geometry:
         for name, b in system.bodies.items():
             cols = [self._components(v) for v in (b.frame.x, b.frame.y, b.frame.z)]
             self._axes[name] = sp.lambdify(self._args, sp.Matrix.hstack(*cols), "numpy")
+
+    def _view(self) -> np.ndarray:
+        """Rows: the screen's right, up and depth directions for a 3D model — up against gravity (Ey if
+        there is none), right the horizontal direction nearest to Ex."""
+        up = np.array([0.0, 1.0, 0.0])
+        for ld in self.system.loads.values():
+            if ld.kind == "gravity":
+                d = np.array([float(c) for c in ld.direction.to_matrix(self.F.ref).xreplace(self.params)])
+                up = -d / np.linalg.norm(d)
+        right = np.array([1.0, 0.0, 0.0]) - up[0] * up
+        if np.linalg.norm(right) < 1e-6:
+            right = np.array([0.0, 1.0, 0.0]) - up[1] * up
+        right /= np.linalg.norm(right)
+        return np.vstack([right, up, np.cross(right, up)])
 
     # symbolic → numeric ----------------------------------------------------------------------------
     def _components(self, v: Vector) -> sp.Matrix:
@@ -133,17 +151,17 @@ class Geometry:
         out = [self.evaluate(c, q, extra, rates) for c in comps]
         if any(c is None for c in out):
             return None
-        return np.array(out, dtype=float)
+        return self.view @ np.array(out, dtype=float)
 
     # where things are ----------------------------------------------------------------------------------
     def point(self, point, q: Mapping) -> np.ndarray:
         name = point if isinstance(point, str) else point.name
-        return np.asarray(self._points[name](*self._vector(q)), dtype=float).reshape(3)
+        return self.view @ np.asarray(self._points[name](*self._vector(q)), dtype=float).reshape(3)
 
     def axes(self, body, q: Mapping) -> np.ndarray:
         """The body frame's unit vectors (columns) in the inertial basis."""
         name = body if isinstance(body, str) else body.name
-        return np.asarray(self._axes[name](*self._vector(q)), dtype=float).reshape(3, 3)
+        return self.view @ np.asarray(self._axes[name](*self._vector(q)), dtype=float).reshape(3, 3)
 
     def number(self, expr) -> float:
         """A parameter expression (a length, a radius) as a number."""
@@ -159,8 +177,10 @@ class Geometry:
 
 def body_size(body, geom: Geometry) -> float:
     """The largest dimension of a body's shape (0 for a particle)."""
-    dims = [abs(geom.number(v)) for k, v in body.shape.dimensions.items() if v is not None and k != "centre"]
     kind = body.shape.kind
+    if kind in ("given inertia", "massless", "point mass"):
+        return 0.0
+    dims = [abs(geom.number(v)) for k, v in body.shape.dimensions.items() if v is not None and k != "centre"]
     if kind in ("disk", "thin ring", "hollow cylinder", "solid sphere", "spherical shell", "half cylinder",
                 "hemisphere"):
         dims = [2 * abs(geom.number(body.shape.radius))] + dims
