@@ -156,8 +156,8 @@ def answers_blocks(solution) -> list:
     several = len(solution.regimes) > 1
     for i, r in enumerate(solution.regimes):
         if several:
-            out.append(Paragraph(f"Regime {i + 1}: while " + (" and ".join(c.label for c in r.conditions) or "always")
-                                 + "."))
+            out.append(Paragraph(f"Regime {i + 1}, while its condition holds ("
+                                 + (", ".join(c.label for c in r.conditions) or "always") + "):"))
             out.append(Equations(tuple(Math(c.expr, c.relation) for c in r.conditions)))
         out.append(Paragraph("Equations of motion (each = 0 in mass-matrix form):"))
         out.append(Equations(tuple(Math((e, sp.Integer(0))) for e in r.eom)))
