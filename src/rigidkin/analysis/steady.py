@@ -71,6 +71,21 @@ class SteadyMotion:
         return "marginal (no growing mode in the linearisation)"
 
 
+def _present(exprs) -> set:
+    """The coordinates the expressions depend on — by the derivative, tested at random states, so a
+    coordinate that appears but cancels (an unsimplified spin angle) counts as absent."""
+    found = set()
+    for e in exprs:
+        plain, back = algebra.plain_state(sp.sympify(e))
+        for sym in plain.free_symbols:
+            q = back.get(sym)
+            if q is None or isinstance(q, sp.Derivative) or q in found:
+                continue
+            if not algebra.is_zero(sp.diff(plain, sym)):
+                found.add(q)
+    return found
+
+
 def _generalised(solution):
     if len(solution.regimes) != 1:
         raise RigidkinError(f"the solution has {len(solution.regimes)} regimes; a steady motion is linearised "
@@ -107,11 +122,7 @@ def linearise(solution, at: Mapping, check: bool = True) -> SteadyMotion:
     M, f = _generalised(solution)
     qs = list(solution.coordinates)
     us = [q.diff(t) for q in qs]
-    present = set()
-    for e in list(M) + list(f):
-        plain, back = algebra.plain_state(sp.sympify(e))
-        present |= {back[s] for s in plain.free_symbols if s in back and back[s] in
-                    algebra.functions_of_time(back[s])}
+    present = _present(list(M) + list(f))
     extra = [q for q in present if q not in qs]
     if extra:
         raise RigidkinError("the equations contain the dependent coordinates "
@@ -139,6 +150,7 @@ def linearise(solution, at: Mapping, check: bool = True) -> SteadyMotion:
     plain_q = {q: sp.Dummy(q.func.__name__) for q in qs}
     fp = f.xreplace(plain_u).xreplace(plain_q)
     pp = {**{plain_u[u]: v for u, v in point.items() if u in plain_u},
+          **{plain_q[q]: 0 for q in ignorable},          # they cancel: any value will do
           **{plain_q[q]: v for q, v in point.items() if q in plain_q}}
     Mv = M.xreplace(plain_u).xreplace(plain_q).xreplace(pp)
     C = (-fp.jacobian([plain_u[u] for u in us])).xreplace(pp)
