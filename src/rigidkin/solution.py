@@ -130,6 +130,12 @@ class Solution:
     def validity(self) -> tuple:
         return self._one().validity
 
+    def check(self, laws=None, expect=(), dimensions: bool = True):
+        """Derive the equations of motion by every other law that applies and compare (a CheckReport)."""
+        from .laws.crosscheck import cross_check
+
+        return cross_check(self, laws=laws, expect=expect, dimensions=dimensions)
+
     def regime(self, index: int = 0) -> Regime:
         return self.regimes[index]
 
