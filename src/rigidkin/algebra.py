@@ -177,8 +177,8 @@ def _tidy(e: sp.Basic) -> sp.Basic:
     out = e.replace(lambda x: x.is_Add and x.has(*rates), collect) if rates else e
     out = out if _ops(out) <= _ops(e) else e
     num, den = sp.fraction(out)
-    if den != 1 and den.is_Add and den.could_extract_minus_sign():
-        out = (-num) / (-den)
+    if den != 1 and den.could_extract_minus_sign():
+        out = sp.factor_terms(-num) / sp.factor_terms(-den)
     return out
 
 

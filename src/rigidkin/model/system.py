@@ -311,8 +311,11 @@ class System:
         pb = self._check_point(point_b, where) if point_b is not None else None
         if basis is not None:
             self._check_frame(basis, where)
-        return self._add_constraint(C.Pin(name, point=p, body_a=a, body_b=b, point_b=pb, basis_frame=basis,
-                                          axis=axis, prefix=prefix, description=description))
+        con = C.Pin(name, point=p, body_a=a, body_b=b, point_b=pb, basis_frame=basis, axis=axis, prefix=prefix,
+                    description=description)
+        for sym in con.reactions():
+            self._claim(sym.name, "reaction")
+        return self._add_constraint(con)
 
     def contact(self, name: str, body, surface, centre: Point | str | None = None, radius=0,
                 friction="smooth", unilateral: bool = True, normal_name: str | None = None,
