@@ -120,3 +120,13 @@ def test_coin_rolls_upright_above_the_threshold_and_falls_below(coin):
     assert np.abs(fast.q["theta"]).max() < 0.1           # the lean stays small
     slow = simulate(s, 1.0, {"theta": 0.02, "dot(phi)": 0.5 * c})
     assert np.abs(slow.q["theta"]).max() > 0.3           # it falls over
+
+
+def test_euler_about_the_contact_point_agrees(coin):
+    """Euler's 2nd law about the material contact point P of the coin (a moving point: the law's
+    inertial-moment term does not vanish) gives the motion found about the mass centre."""
+    s, sol = coin
+    other = s.solve(method="about-point:P")
+    assert any("about P" in e.label for e in other.equations)
+    for q in sol.coordinates:
+        assert algebra.is_zero(other.accelerations[q] - sol.accelerations[q]), q

@@ -264,3 +264,13 @@ def test_gyroscope_holds_the_axle_up_only_while_it_spins(gyro):
     res = residual(sol, {th: 0.2, th.diff(t): 0, psi.diff(t): 0, phi.diff(t): 0})
     I1 = m * r**2 / 4
     assert float(res[th].xreplace(vals)) == pytest.approx(-m * g * l * np.cos(0.2) / (I1 + m * l**2), rel=1e-9)
+
+
+def test_top_about_the_tip_and_by_lagrange_agree_with_the_mass_centre_form(top313):
+    """Euler's 2nd law about the fixed tip O (no inertial-moment term: O is fixed) and Lagrange's
+    equations give the same motion as Euler's laws about the mass centre."""
+    s, sol = top313
+    for method in ("about-point:O", "lagrange"):
+        other = s.solve(method=method)
+        for q in sol.coordinates:
+            assert algebra.is_zero(other.accelerations[q] - sol.accelerations[q]), (method, q)

@@ -36,7 +36,7 @@ class DiskContact(Contact):
 
     axis: Vector = None
 
-    kind = "disk contact"
+    kind = "contact"          # a contact like any other for the laws, modes and reports
 
     def __post_init__(self):
         where = f"contact {self.name}"
