@@ -18,7 +18,7 @@ within µN where it sticks, slip directions whose slip-speed rate has the slip's
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 import sympy as sp
@@ -26,7 +26,8 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..errors import ModelError, RigidkinError
 from ..model.constraints import ROLLING, SMOOTH, Contact, Coulomb
-from .rhs import SimulationError, compile_functions, regime_rates
+from ..printing import text as show
+from .rhs import RegimeFunctions, SimulationError, compile_functions
 from .state import StateLayout
 
 t = dynamicsymbols._t
@@ -67,26 +68,39 @@ class Watch:
     label: str           # e.g. "contact A opens"
     direction: int       # the sign of the crossing that counts (solve_ivp's convention)
     slip_sign: int = 0   # "slips": the sign σ of the slip that begins
+    quantity: str = ""   # the watched quantity, as a person reads it
+
+
+class _Only:
+    """A view of a ModeModel restricted to some of its conditions."""
+
+    def __init__(self, model, conditions):
+        self._m, self.conditions = model, conditions
+
+    def __getattr__(self, name):
+        return getattr(self._m, name)
 
 
 @dataclass
 class ModeModel:
-    """Numeric functions of one regime of one mode (parameters passed at call time)."""
+    """Numeric functions of one regime of one mode (parameters passed at call time).
+
+    ``functions`` (a :class:`RegimeFunctions`) evaluates, at a state, the rates, the reactions and
+    the quantities [P_nc, watches…, constraint gaps…, T, U, friction forces and limits…].
+    ``conditions`` are the regime's sign conditions: (watch index, ">" or "<").
+    """
 
     system: object
     mode: dict
     regime_index: int
     solution: object
     layout: StateLayout
-    rhs_function: object
-    aux_function: object
-    reaction_names: list
+    functions: RegimeFunctions
     watches: list
+    conditions: list
     residual_names: list
     friction_names: list
     conservative: bool
-    _cache_key: tuple = field(default=(None, None), repr=False)
-    _cache_val: list = field(default=None, repr=False)
 
     @property
     def regime(self):
@@ -94,57 +108,79 @@ class ModeModel:
 
     @property
     def description(self) -> str:
-        from ..printing import text as show
-
         words = describe_mode(self.system, self.mode)
-        conds = [f"{show(c.expr)} {c.relation.replace('>=', '≥').replace('<=', '≤')} 0"
-                 for c in self.regime.conditions]
+        conds = [f"{self.watches[wi].quantity} {rel} 0" for wi, rel in self.conditions]
         return words + (f" ({', '.join(conds)})" if conds else "")
 
-    def aux(self, t_: float, y: np.ndarray, p) -> list:
-        """Reactions, watch values, constraint residuals, T, U and friction forces at one state."""
-        key = (t_, y.tobytes(), tuple(p))
-        if self._cache_key == key:
-            return self._cache_val
-        with np.errstate(all="ignore"):
-            vals = list(self.aux_function(t_, *y[:2 * self.layout.n], *p))
-        self._cache_key, self._cache_val = key, vals
-        return vals
+    def _q(self, t_, y, p):
+        return self.functions.evaluate(t_, y, p)
 
-    def slices(self):
-        nr, nw, ns = len(self.reaction_names), len(self.watches), len(self.residual_names)
-        return (slice(0, nr), slice(nr, nr + nw), slice(nr + nw, nr + nw + ns), nr + nw + ns,
-                slice(nr + nw + ns + 2, None))
+    def rates(self, t_, y, p) -> np.ndarray:
+        """dy/dt of (q, q̇) and of the work of non-conservative loads and reactions."""
+        dy, _, q = self._q(t_, y, p)
+        return np.concatenate([dy, q[:1]])
 
     def reactions(self, t_, y, p) -> dict:
-        return dict(zip(self.reaction_names, map(float, self.aux(t_, y, p)[self.slices()[0]])))
+        return dict(self._q(t_, y, p)[1])
 
-    def watch_values(self, t_, y, p) -> list:
-        return [float(v) for v in self.aux(t_, y, p)[self.slices()[1]]]
+    def watch_values(self, t_, y, p) -> np.ndarray:
+        return self._q(t_, y, p)[2][1:1 + len(self.watches)]
 
     def residuals(self, t_, y, p) -> dict:
-        return dict(zip(self.residual_names, map(float, self.aux(t_, y, p)[self.slices()[2]])))
+        q = self._q(t_, y, p)[2]
+        nw = len(self.watches)
+        return dict(zip(self.residual_names, map(float, q[1 + nw:1 + nw + len(self.residual_names)])))
 
     def energy(self, t_, y, p) -> tuple[float, float]:
-        i = self.slices()[3]
-        vals = self.aux(t_, y, p)
-        return float(vals[i]), float(vals[i + 1])
+        q = self._q(t_, y, p)[2]
+        i = 1 + len(self.watches) + len(self.residual_names)
+        return float(q[i]), float(q[i + 1])
 
-    def frictions(self, t_, y, p) -> dict:
-        return dict(zip(self.friction_names, map(float, self.aux(t_, y, p)[self.slices()[4]])))
+    def condition_holds(self, t_, y, p, zero: float) -> bool | None:
+        """Whether the regime's conditions hold strictly at the state (None: one of them is zero there)."""
+        w = self.watch_values(t_, y, p)
+        for wi, rel in self.conditions:
+            v = float(w[wi])
+            if abs(v) <= zero:
+                return None
+            if (v > 0) != (rel == ">"):
+                return False
+        return True
+
+    def leaves_zero_consistently(self, t_, y, p, zero: float) -> bool:
+        """At a state where some condition is zero: does the motion of this regime make them all hold?
+
+        A short explicit step along this regime's own rates shows the sign each condition takes.
+        """
+        y = np.asarray(y, dtype=float)
+        n = 2 * self.layout.n
+        f = self.rates(t_, y, p)[:n]
+        h = 1e-7 * (1.0 + float(np.max(np.abs(y[:n])))) / max(float(np.max(np.abs(f))), 1e-300)
+        y2 = y.copy()
+        y2[:n] = y[:n] + h * f
+        w0, w1 = self.watch_values(t_, y, p), self.watch_values(t_ + h, y2, p)
+        for wi, rel in self.conditions:
+            v = float(w0[wi]) if abs(float(w0[wi])) > zero else float(w1[wi])
+            if v == 0.0 or (v > 0) != (rel == ">"):
+                return False
+        return True
 
     def evaluate(self, times: np.ndarray, ys: np.ndarray, p) -> dict:
-        """Every aux quantity at many states at once (arrays), by name."""
-        n = len(times)
-        with np.errstate(all="ignore"):
-            vals = self.aux_function(times, *ys[:2 * self.layout.n], *p)
-        vals = [np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy() for v in vals]
-        r, _, s, e, f = self.slices()
-        out = {"reactions": dict(zip(self.reaction_names, vals[r])),
-               "residuals": dict(zip(self.residual_names, vals[s])),
-               "T": vals[e], "U": vals[e + 1],
-               "frictions": dict(zip(self.friction_names, vals[f]))}
-        return out
+        """The reactions, constraint gaps, T, U and friction forces at many states (arrays), by name."""
+        reactions = {k: np.empty(len(times)) for k in self.functions.reaction_names}
+        nw, ns = len(self.watches), len(self.residual_names)
+        res = np.empty((ns, len(times)))
+        T, U = np.empty(len(times)), np.empty(len(times))
+        fr = np.empty((len(self.friction_names), len(times)))
+        for j, tt in enumerate(times):
+            _, r, q = self._q(float(tt), ys[:, j], p)
+            for k, v in r.items():
+                reactions[k][j] = v
+            res[:, j] = q[1 + nw:1 + nw + ns]
+            T[j], U[j] = q[1 + nw + ns], q[2 + nw + ns]
+            fr[:, j] = q[3 + nw + ns:]
+        return {"reactions": reactions, "residuals": dict(zip(self.residual_names, res)), "T": T, "U": U,
+                "frictions": dict(zip(self.friction_names, fr))}
 
 
 class Hybrid:
@@ -201,57 +237,66 @@ class Hybrid:
         sol = self.solution(mode)
         reg = sol.regime(k)
         setup = sol.setup
-        lay = self.layout
         kin = setup.kin
-        react = dict(reg.reactions)
-        rsub = {sp.Symbol(n, real=True): v for n, v in react.items()}
+        lay = self.layout
         signs = dict(reg.signs)
+        present = set().union(*[e.expr.free_symbols for e in sol.equations]) if sol.equations else set()
+        zero_r = {r: sp.Integer(0) for r in setup.reactions if r not in present}
+
+        def R(sym):         # a reaction as a symbol the numeric functions fill in (0 if absent)
+            return zero_r.get(sym, sym)
+
         # energy and the power of non-conservative loads and reactions
         from ..laws.energy import kinetic_energy, nonconservative_power, potential_energy
 
         T, U = kinetic_energy(setup), potential_energy(setup)
         powers = nonconservative_power(setup)
-        P = sum((pw.power for pw in powers), sp.Integer(0)).xreplace(signs).xreplace(rsub)
+        P = sum((pw.power for pw in powers), sp.Integer(0)).xreplace(signs).xreplace(zero_r)
         conservative = all(pw.power == 0 for pw in powers)
-        qdot, udot = regime_rates(sol, k, lay)
-        rhs_fn = compile_functions(lay.arguments(), [lay.to_plain(e) for e in (*qdot, *udot, P)])
         # watches
         watches, wexprs = [], []
 
         def watch(w, e):
-            e = sp.sympify(e)
+            e = sp.sympify(e).xreplace(zero_r)
             plain = lay.to_plain(e)
             if not (plain.free_symbols - set(lay.parameter_symbols)):
-                return          # a constant never crosses zero
+                return None          # a constant never crosses zero
             watches.append(w)
             wexprs.append(e)
+            return len(watches) - 1
 
         for name, c in self.contacts.items():
             st = mode[name]
             if st == OPEN:
-                watch(Watch("impact", name, f"contact {name} closes (impact)", -1), c.gap(kin))
+                watch(Watch("impact", name, f"contact {name} closes (impact)", -1, quantity=f"gap of {name}"),
+                      c.gap(kin))
                 continue
-            if c.unilateral and str(c.N) in react:
-                watch(Watch("opens", name, f"contact {name} opens", -1), react[str(c.N)])
+            if c.unilateral:
+                watch(Watch("opens", name, f"contact {name} opens", -1, quantity=str(c.N)), R(c.N))
             if st == STICK and isinstance(c.friction, Coulomb):
-                mu, N = c.friction.mu, react.get(str(c.N), sp.Integer(0))
+                mu, N = c.friction.mu, R(c.N)
                 if kin.planar:
-                    F = react.get(str(c.F), sp.Integer(0))
-                    watch(Watch("slips", name, f"contact {name} starts to slip", -1, -1), mu * N - F)
-                    watch(Watch("slips", name, f"contact {name} starts to slip", -1, +1), mu * N + F)
+                    F = R(c.F)
+                    watch(Watch("slips", name, f"contact {name} starts to slip", -1, -1, f"µ{c.N} − {c.F}"),
+                          mu * N - F)
+                    watch(Watch("slips", name, f"contact {name} starts to slip", -1, +1, f"µ{c.N} + {c.F}"),
+                          mu * N + F)
                 else:
-                    Fs = [v for n_, v in react.items() if n_.startswith(str(c.F))]
-                    watch(Watch("slips", name, f"contact {name} starts to slip", -1),
+                    Fs = [R(r) for r in setup.reactions if str(r).startswith(str(c.F))]
+                    watch(Watch("slips", name, f"contact {name} starts to slip", -1, quantity="friction cone"),
                           mu**2 * N**2 - sum((f**2 for f in Fs), sp.Integer(0)))
-        choices = {sc.label: sc for sc in setup.sign_choices}
-        for cond in reg.conditions:
-            sc = choices.get(cond.label)
-            load = sc.load if sc is not None else cond.label
-            kind = "sticks" if (load in self.contacts and sc is not None and sc.rate_based
-                                and isinstance(self.contacts[load].friction, Coulomb)) else "reverses"
-            label = (f"contact {load} stops slipping" if kind == "sticks"
-                     else f"{cond.label} changes sign")
-            watch(Watch(kind, load, label, -1 if cond.relation in (">", ">=") else +1), cond.expr)
+        conditions = []
+        for sc in setup.sign_choices:
+            if sc.symbol not in signs:
+                continue
+            sgn = int(signs[sc.symbol])
+            q = setup.scalar(sc.quantity) if sc.rate_based else R(sc.quantity)
+            kind = "sticks" if (sc.load in self.contacts and sc.rate_based
+                                and isinstance(self.contacts[sc.load].friction, Coulomb)) else "reverses"
+            label = f"contact {sc.load} stops slipping" if kind == "sticks" else f"{sc.label} changes sign"
+            wi = watch(Watch(kind, sc.load, label, -1 if sgn > 0 else +1, quantity=show(kin.simplify_expr(q))), q)
+            if wi is not None:
+                conditions.append((wi, ">" if sgn > 0 else "<"))
         # constraint residuals: the gaps of the closed rows (position level)
         residual_names, rexprs = [], []
         for row in setup.rows:
@@ -259,28 +304,20 @@ class Hybrid:
                 residual_names.append(row.label.replace(": normal velocity", "").replace(": velocity along",
                                                                                            " along"))
                 rexprs.append(row.gap)
-        # friction forces along the contact tangent (stick: the reaction; slip: −µ N σ)
+        # friction forces along the contact tangent (stick: the reaction; slip: −µ N σ), and the limits µN
         friction_names, fexprs = [], []
         for name, c in self.contacts.items():
-            if not isinstance(c.friction, Coulomb) and c.friction != ROLLING:
-                continue
-            if mode[name] == STICK and str(c.F) in react:
-                friction_names.append(str(c.F))
-                fexprs.append(react[str(c.F)])
-            elif mode[name] == SLIP and isinstance(c.friction, Coulomb):
-                sc = next((s for s in setup.sign_choices if s.load == name and s.rate_based), None)
+            if mode[name] == SLIP and isinstance(c.friction, Coulomb):
+                sc = next((s_ for s_ in setup.sign_choices if s_.load == name and s_.rate_based), None)
                 if sc is not None and sc.symbol in signs:
                     friction_names.append(str(c.F))
-                    fexprs.append(-c.friction.mu * react.get(str(c.N), sp.Integer(0)) * signs[sc.symbol])
-        for name, c in self.contacts.items():      # the friction limit µN of every Coulomb contact
+                    fexprs.append(-c.friction.mu * R(c.N) * signs[sc.symbol])
+        for name, c in self.contacts.items():
             if isinstance(c.friction, Coulomb):
                 friction_names.append(f"mu*{c.N}")
-                fexprs.append(c.friction.mu * react.get(str(c.N), sp.Integer(0)) if mode[name] != OPEN
-                              else sp.Integer(0))
-        names = list(react)
-        exprs = [*(react[n] for n in names), *wexprs, *rexprs, T, U, *fexprs]
-        aux_fn = compile_functions(lay.arguments(), [lay.to_plain(e) for e in exprs])
-        return ModeModel(self.system, mode, k, sol, lay, rhs_fn, aux_fn, names, watches, residual_names,
+                fexprs.append(c.friction.mu * R(c.N) if mode[name] != OPEN else sp.Integer(0))
+        fns = RegimeFunctions(sol, k, lay, [P, *wexprs, *rexprs, T, U, *fexprs])
+        return ModeModel(self.system, mode, k, sol, lay, fns, watches, conditions, residual_names,
                          friction_names, conservative)
 
     # contact quantities in the full state ----------------------------------------------------------
@@ -300,19 +337,6 @@ class Hybrid:
         f, n = self.contact_functions(name)
         vals = [float(v) for v in f(t_, *y[:2 * self.layout.n], *p)]
         return vals[0], vals[1], (vals[2] if n > 2 else None)
-
-    def rate_of_condition(self, mode: dict, k: int, cond_index: int):
-        """A function giving d/dt of regime k's condition ``cond_index`` in regime k (its own accelerations)."""
-        key = (mode_key(mode), k, cond_index)
-        if key not in self._rate_fns:
-            sol = self.solution(mode)
-            reg = sol.regime(k)
-            red = sol.setup.reduction
-            e = sp.diff(reg.conditions[cond_index].expr, t)
-            acc = {q.diff(t, 2): a for q, a in reg.accelerations.items()}
-            e = e.xreplace(red.accel_map).xreplace(red.rate_map).xreplace(acc)
-            self._rate_fns[key] = compile_functions(self.layout.arguments(), [self.layout.to_plain(e)])
-        return self._rate_fns[key]
 
     def relation_functions(self, mode: dict):
         """(dependent coordinates' slots, q_d from the integrated relations, q̇_d from the rate relations)."""
@@ -388,27 +412,19 @@ class Hybrid:
         if len(sol.regimes) == 1:
             return 0
         forced = forced or {}
-        choices = {sc.label: sc for sc in sol.setup.sign_choices}
+        zero = zero_tol * max(1.0, float(np.max(np.abs(y[:2 * self.layout.n]))))
+        choices = sol.setup.sign_choices
         candidates = []
         for k, reg in enumerate(sol.regimes):
-            ok = True
-            for ci, cond in enumerate(reg.conditions):
-                sc = choices.get(cond.label)
-                if sc is not None and sc.load in forced:
-                    if reg.signs.get(sc.symbol) != forced[sc.load]:
-                        ok = False
-                        break
-                    continue
-                val = self._condition_value(mode, k, ci, t_, y, p)
-                if abs(val) <= zero_tol * max(1.0, float(np.max(np.abs(y[:2 * self.layout.n])))):
-                    rate = float(self.rate_of_condition(mode, k, ci)(t_, *y[:2 * self.layout.n], *p)[0])
-                    if not cond.holds(rate):
-                        ok = False
-                        break
-                elif not cond.holds(val):
-                    ok = False
-                    break
-            if ok:
+            if any(sc.load in forced and sc.symbol in reg.signs and reg.signs[sc.symbol] != forced[sc.load]
+                   for sc in choices):
+                continue
+            model = self.model(mode, k)
+            free = [(wi, rel) for wi, rel in model.conditions if model.watches[wi].name not in forced]
+            held = ModeModel.condition_holds(_Only(model, free), t_, y, p, zero)
+            if held is None:
+                held = ModeModel.leaves_zero_consistently(_Only(model, free), t_, y, p, zero)
+            if held:
                 candidates.append(k)
         if not candidates:
             raise SimulationError(f"at t = {t_:.10g} no friction direction of the mode "
@@ -417,13 +433,6 @@ class Hybrid:
                                   hint="The friction would have to stick where the model cannot stick "
                                        "(a friction load or a collar), or the friction law has no solution here.")
         return candidates[0]
-
-    def _condition_value(self, mode, k, ci, t_, y, p) -> float:
-        key = (mode_key(mode), k, "cond", ci)
-        if key not in self._rate_fns:
-            cond = self.solution(mode).regime(k).conditions[ci]
-            self._rate_fns[key] = compile_functions(self.layout.arguments(), [self.layout.to_plain(cond.expr)])
-        return float(self._rate_fns[key](t_, *y[:2 * self.layout.n], *p)[0])
 
     def settle(self, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: float = 1e-9,
                force_tol: float = 1e-9) -> tuple[dict, int, list[str]]:

@@ -52,35 +52,123 @@ def compile_functions(args: Sequence[sp.Symbol], exprs: Sequence[sp.Expr]) -> Ca
     return sp.lambdify(list(args), exprs, modules="numpy", cse=True)
 
 
-def regime_rates(solution, regime_index: int, layout: StateLayout) -> tuple[list, list]:
-    """(q̇ expressions, q̈ expressions) for every coordinate in layout order, in one regime of a mode."""
-    reg = solution.regime(regime_index)
-    red = solution.setup.reduction
-    acc = {q.diff(t, 2): a for q, a in reg.accelerations.items()}
-    qdot, udot = [], []
-    for q in layout.coordinates:
-        if q in reg.accelerations:
-            qdot.append(q.diff(t))
-            udot.append(reg.accelerations[q])
+def _is_ready(mapping) -> bool:
+    """True when a Solution mapping holds its expressions already (not a LazyMap still to compute)."""
+    return getattr(mapping, "computed", True)
+
+
+class RegimeFunctions:
+    """The numeric content of one regime of one mode, in three stages.
+
+    1. the independent accelerations q̈_i: the Solution's expressions when it has them, otherwise
+       M q̈_i = f solved numerically (large systems whose symbolic solve is left lazy);
+    2. the reactions: the Solution's expressions when it has them, otherwise the balance equations
+       (linear in q̈_i and the reactions) solved numerically with q̈_i known (least squares: the
+       extra equations are consistent);
+    3. the rates of every coordinate (q̇_d and q̈_d from the reduction's relations) and any further
+       ``quantities`` — expressions of the state, the parameters, q̈_i and the reaction symbols.
+
+    ``evaluate(t, y, p)`` returns (dy/dt for (q, q̇), reactions, quantities).
+    """
+
+    def __init__(self, solution, regime_index: int, layout: StateLayout, quantities: Sequence[sp.Expr] = ()):
+        from ..kinematics import linear_form
+
+        reg = solution.regime(regime_index)
+        red = solution.setup.reduction
+        lay = self.layout = layout
+        self.independent = list(solution.coordinates)
+        self.slots = [lay.coordinates.index(q) for q in self.independent]
+        accels = [q.diff(t, 2) for q in self.independent]
+        acc_syms = [sp.Symbol(f"_acc_{q.func.__name__}", real=True) for q in self.independent]
+        to_acc = dict(zip(accels, acc_syms))
+        reactions = [r for r in solution.setup.reactions]
+        present = set().union(*[e.expr.free_symbols for e in solution.equations]) if solution.equations else set()
+        self.reaction_symbols = [r for r in reactions if r in present]
+        self.zero_reactions = [str(r) for r in reactions if r not in present]
+        self.reaction_names = [str(r) for r in self.reaction_symbols] + self.zero_reactions
+        base = lay.arguments()
+        n_t = 1 + 2 * lay.n
+        args_acc = base[:n_t] + acc_syms + base[n_t:]
+        # stage 1
+        self.explicit_acc = _is_ready(reg.accelerations)
+        if self.explicit_acc:
+            self._acc = compile_functions(base, [lay.to_plain(reg.accelerations[q]) for q in self.independent])
         else:
-            qdot.append(red.rate_map[q.diff(t)])
-            udot.append(sp.sympify(red.accel_map[q.diff(t, 2)]).xreplace(acc).xreplace(red.rate_map))
-    return qdot, udot
+            M, f = reg.mass_matrix, reg.forcing
+            self._acc = compile_functions(base, [lay.to_plain(e) for e in (*M, *f)])
+        # stage 2
+        self.explicit_react = _is_ready(reg.reactions)
+        nI, nR = len(acc_syms), len(self.reaction_symbols)
+        if self.explicit_react:
+            self._react = compile_functions(base, [lay.to_plain(reg.reactions[str(r)])
+                                                   for r in self.reaction_symbols])
+        else:
+            signs = dict(reg.signs)
+            exprs = [e.expr.xreplace(signs) for e in solution.equations]
+            A, b = linear_form(exprs, accels + self.reaction_symbols)
+            Aa, Ar = A[:, :nI], A[:, nI:]
+            rhs = -(b + Aa * sp.Matrix(acc_syms)) if nI else -b
+            self._rows = A.rows
+            self._react = compile_functions(args_acc, [lay.to_plain(e) for e in (*Ar, *rhs)])
+        # stage 3
+        qdot, udot = [], []
+        for q in lay.coordinates:
+            if q in self.independent:
+                qdot.append(q.diff(t))
+                udot.append(to_acc[q.diff(t, 2)])
+            else:
+                qdot.append(red.rate_map[q.diff(t)])
+                udot.append(sp.sympify(red.accel_map[q.diff(t, 2)]).xreplace(to_acc).xreplace(red.rate_map))
+        args_all = base[:n_t] + acc_syms + self.reaction_symbols + base[n_t:]
+        self.n_quantities = len(quantities)
+        self._rest = compile_functions(args_all, [lay.to_plain(e) for e in (*qdot, *udot, *quantities)])
+        self._nI, self._nR = nI, nR
+        self._key, self._val = None, None
+
+    def evaluate(self, t_: float, y: np.ndarray, p) -> tuple[np.ndarray, dict, np.ndarray]:
+        """(dy/dt of (q, q̇), reactions by name, quantities) at one state; the last call is remembered."""
+        lay = self.layout
+        st = tuple(float(v) for v in y[:2 * lay.n])
+        key = (float(t_), st, tuple(p))
+        if key == self._key:
+            return self._val
+        nI, nR = self._nI, self._nR
+        with np.errstate(all="ignore"):
+            a = np.asarray(self._acc(t_, *st, *p), dtype=float)
+            if not self.explicit_acc:
+                M, f = a[:nI * nI].reshape(nI, nI), a[nI * nI:]
+                try:
+                    a = np.linalg.solve(M, f)
+                except np.linalg.LinAlgError:
+                    a = np.full(nI, np.nan)
+            if nR:
+                r = np.asarray(self._react(t_, *st, *a, *p) if not self.explicit_react
+                               else self._react(t_, *st, *p), dtype=float)
+                if not self.explicit_react:
+                    Ar, rhs = r[:self._rows * nR].reshape(self._rows, nR), r[self._rows * nR:]
+                    r = np.linalg.lstsq(Ar, rhs, rcond=None)[0] if np.all(np.isfinite(Ar)) else np.full(nR, np.nan)
+            else:
+                r = np.zeros(0)
+            rest = np.asarray(self._rest(t_, *st, *a, *r, *p), dtype=float)
+        reactions = dict(zip(self.reaction_names, [*map(float, r), *([0.0] * len(self.zero_reactions))]))
+        out = (rest[:2 * lay.n], reactions, rest[2 * lay.n:])
+        self._key, self._val = key, out
+        return out
 
 
 class RHS:
-    """dy/dt = f(t, y) with the parameters bound; y = (q, q̇, extra integrals such as work done).
+    """dy/dt = f(t, y) with the parameters bound; y = (q, q̇, then extra integrals such as work done).
 
-    It refuses to return a NaN or an infinity: the failing time and state are reported instead.
-    ``progress(t)`` is called now and then (for progress bars).
+    ``rates(t, y, p)`` gives the whole derivative.  It refuses to return a NaN or an infinity: the
+    failing time and state are reported instead.  ``progress(t)`` is called now and then.
     """
 
-    def __init__(self, function: Callable, layout: StateLayout, params: np.ndarray, n_extra: int = 0,
-                 label: str = "", progress: Callable | None = None):
-        self.function = function
+    def __init__(self, rates: Callable, layout: StateLayout, params: np.ndarray, label: str = "",
+                 progress: Callable | None = None):
+        self.rates = rates
         self.layout = layout
         self.params = tuple(float(v) for v in params)
-        self.size = 2 * layout.n + n_extra
         self.label = label
         self.progress = progress
         self.calls = 0
@@ -89,7 +177,7 @@ class RHS:
     def __call__(self, t_: float, y: np.ndarray) -> np.ndarray:
         self.calls += 1
         with np.errstate(all="ignore"):
-            dy = np.asarray(self.function(t_, *y[:2 * self.layout.n], *self.params), dtype=float)
+            dy = np.asarray(self.rates(t_, y, self.params), dtype=float)
         if not np.all(np.isfinite(dy)):
             state = ", ".join(f"{k} = {v:.6g}" for k, v in self.layout.as_dict(y).items())
             raise SimulationError(f"the equations of motion give a non-finite rate at t = {t_:.10g} "
@@ -108,15 +196,17 @@ def make_rhs(system, mode: dict | None = None, regime: int = 0, params=None, lay
              extra_rates: Sequence[sp.Expr] = (), progress: Callable | None = None) -> RHS:
     """The right-hand side rhs(t, y) of ``system`` in ``mode`` (regime ``regime``), parameters bound by value.
 
-    y = (q_1 … q_n, q̇_1 … q̇_n[, extra…]); ``extra_rates`` are further integrands (e.g. the power of
-    non-conservative loads).  This is the function a compiled backend replaces.
+    y = (q_1 … q_n, q̇_1 … q̇_n[, extra…]); ``extra_rates`` are further integrands (expressions of the
+    state, parameters and reaction symbols).  Its numeric functions come from :func:`compile_functions`.
     """
     from .state import parameter_vector
 
     layout = layout or StateLayout.of(system)
-    solution = system.solve(mode=dict(mode or {}))
-    qdot, udot = regime_rates(solution, regime, layout)
-    exprs = [layout.to_plain(e) for e in (*qdot, *udot, *extra_rates)]
-    f = compile_functions(layout.arguments(), exprs)
+    fns = RegimeFunctions(system.solve(mode=dict(mode or {})), regime, layout, extra_rates)
     p = parameter_vector(system, layout, params)
-    return RHS(f, layout, p, len(extra_rates), label=f"{system.name}", progress=progress)
+
+    def rates(t_, y, p_):
+        dy, _, extra = fns.evaluate(t_, y, p_)
+        return np.concatenate([dy, extra]) if len(extra) else dy
+
+    return RHS(rates, layout, p, label=f"{system.name}", progress=progress)

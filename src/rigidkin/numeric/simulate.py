@@ -222,7 +222,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
                        "(The constant of integration of such a relation is fixed by the declared initial values "
                        "of the coordinates; a mode entered later may need another one.)")
             break
-        rhs = RHS(model.rhs_function, lay, p, 1, label=system.name, progress=report)
+        rhs = RHS(model.rates, lay, p, label=system.name, progress=report)
         fns = []
         zero = 1e-9 * max(1.0, float(np.max(np.abs(y[:2 * n]))))
         for i, w in enumerate(model.watches):
