@@ -42,11 +42,28 @@ def time_limit(seconds: float | None):
 CLOCK = time.process_time
 
 
+def cold_caches() -> None:
+    """Forget what earlier runs computed: sympy's cache and rigidkin's module-level caches."""
+    from sympy.core.cache import clear_cache
+
+    clear_cache()
+    for name, module in list(sys.modules.items()):
+        if name.startswith("rigidkin") and module is not None:
+            for attr, value in vars(module).items():
+                if "CACHE" in attr.upper() and isinstance(value, dict):
+                    value.clear()
+
+
 def median_time(fn: Callable[[], object], repeats: int = 3, limit: float | None = None,
-                clock: Callable[[], float] = CLOCK) -> tuple[float, object]:
-    """(median time of ``repeats`` calls, the last call's result); raises TimeLimit past ``limit`` (wall)."""
+                clock: Callable[[], float] = CLOCK, cold: bool = False) -> tuple[float, object]:
+    """(median time of ``repeats`` calls, the last call's result); raises TimeLimit past ``limit`` (wall).
+
+    ``cold``: clear the caches before each call (a derivation measured as if for the first time).
+    """
     times, out = [], None
     for _ in range(repeats):
+        if cold:
+            cold_caches()
         with time_limit(limit):
             t0 = clock()
             out = fn()

@@ -53,7 +53,7 @@ def examples_table(repeats: int, limit: float) -> str:
         if name == "chain":
             continue
         try:
-            t_rk, _ = median_time(lambda name=name: examples.build(name).solve(), repeats, limit)
+            t_rk, _ = median_time(lambda name=name: examples.build(name).solve(), repeats, limit, cold=True)
         except TimeLimit:
             rows.append([name, f"> {limit:.0f}", None, None, "no"])
             continue
@@ -61,12 +61,12 @@ def examples_table(repeats: int, limit: float) -> str:
             rows.append([name, f"error: {type(exc).__name__}", None, None, "–"])
             continue
         try:
-            t_km, _ = median_time(lambda name=name: kane_on_model(name), repeats, limit)
+            t_km, _ = median_time(lambda name=name: kane_on_model(name), repeats, limit, cold=True)
             ratio = t_rk / t_km
         except Exception:
             t_km = ratio = None
         rows.append([name, t_rk, t_km, ratio, "yes" if t_rk <= 1.0 else "no"])
-    return table(f"Derivation of every bundled example (CPU s, median of {repeats} fresh runs)",
+    return table(f"Derivation of every bundled example (CPU s, median of {repeats} runs, cold caches)",
                  ["example", "rigidkin solve", "KanesMethod", "ratio", "≤ 1 s"], rows,
                  "ratio = rigidkin / KanesMethod (< 1: rigidkin faster); KanesMethod gives M, f only "
                  "(no reactions, not solved), rigidkin gives solved accelerations, reactions, M and f.")
@@ -82,12 +82,13 @@ def chain_table(ns, repeats: int, solve_limit: float, eq_limit: float) -> str:
     solve_ok = eq_ok = True
     for n in ns:
         reps = repeats if n <= 5 else 1
-        t_km, km = median_time(lambda n=n: kane_chain(n)[0], reps)
+        t_km, km = median_time(lambda n=n: kane_chain(n)[0], reps, cold=True)
         ops_km = ops_after_cse(list(km.mass_matrix) + list(km.forcing))
         row = [n, t_km, ops_km]
         if solve_ok:
             try:
-                t_rk, sol = median_time(lambda n=n: chain.build(n).solve(), reps if n <= 2 else 1, solve_limit)
+                t_rk, sol = median_time(lambda n=n: chain.build(n).solve(), reps if n <= 2 else 1, solve_limit,
+                                        cold=True)
                 ops_rk = ops_after_cse(list(sol.mass_matrix) + list(sol.forcing))
                 ops_acc = ops_after_cse(list(sol.accelerations.values()))
                 row += [t_rk, t_rk / t_km, ops_rk, ops_acc]
@@ -101,7 +102,7 @@ def chain_table(ns, repeats: int, solve_limit: float, eq_limit: float) -> str:
                 def equations(n=n):
                     s = chain.build(n)
                     return s, newton_euler.equations(setup_mode(s))
-                t_eq, (s, _) = median_time(equations, reps, eq_limit)
+                t_eq, (s, _) = median_time(equations, reps, eq_limit, cold=True)
                 row += [t_eq, t_eq / t_km, operation_count(kernel(s, form="implicit"))]
             except TimeLimit:
                 eq_ok = False
@@ -110,7 +111,7 @@ def chain_table(ns, repeats: int, solve_limit: float, eq_limit: float) -> str:
             row += [None] * 3
         rows.append(row)
         print(f"  chain n={n} done", flush=True)
-    return table("Chain of n rods: derivation time (s) and operations after CSE",
+    return table("Chain of n rods: derivation time (CPU s, cold caches) and operations after CSE",
                  ["n", "Kane t", "Kane ops", "rk solve t", "ratio", "rk M,f ops", "rk q̈ ops", "rk eqs t", "ratio",
                   "rk A,b ops"], rows,
                  "Kane: sympy.physics.mechanics KanesMethod built here (mass matrix and forcing, unsolved).\n"

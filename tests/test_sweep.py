@@ -175,3 +175,20 @@ def test_cli_errors_are_one_paragraph(tmp_path, capsys, argv, message):
     code = main(["sweep", "ladder", *argv, "-o", str(tmp_path / "x.csv")])
     err = capsys.readouterr().err
     assert code == 2 and message in err and "Traceback" not in err
+
+
+def test_each_run_starts_in_its_own_friction_regime_and_stops_when_it_ends():
+    """Boulder-push: sliding friction at the plate opposes ẋ; moving down, the boulder stops at t = |v0|/a."""
+    s = rk.examples.build("boulder-push")
+    res = sweep(s, {"dot(x)": [-1.0, -0.5, 0.0, 0.5]}, t_end=1.0)
+    m, P, mu, beta = 500.0, 3000.0, 0.3, math.radians(15)
+    a_down = 5 * (P * (1 + mu) - m * G * math.sin(beta)) / (7 * m)     # regime ẋ < 0
+    a_up = 5 * (P * (1 - mu) - m * G * math.sin(beta)) / (7 * m)       # regime ẋ > 0
+    name = "slip speed at plate"
+    t_stop = res.event_time(name)
+    assert t_stop[0] == pytest.approx(1.0 / a_down, rel=1e-10)
+    assert t_stop[1] == pytest.approx(0.5 / a_down, rel=1e-10)
+    assert list(res.status) == [1, 1, 6, 0]              # the run at rest fits no sliding regime
+    assert res.result.y_end[3, 2] == pytest.approx(0.5 + a_up * 1.0, rel=1e-10)   # ẋ at t_end
+    # rolling on the incline: r φ̇ = ẋ holds along the way
+    assert res.result.y_end[3, 3] * 0.6 == pytest.approx(res.result.y_end[3, 2], rel=1e-10)

@@ -22,7 +22,7 @@ import numpy as np
 
 #: Run status codes.
 STATUS = {0: "reached the end time", 1: "terminal event", 2: "non-finite state", 3: "singular equations",
-          4: "too many steps", 5: "step size too small"}
+          4: "too many steps", 5: "step size too small", 6: "no regime fits the initial state"}
 
 
 def _coefficients_c() -> str:

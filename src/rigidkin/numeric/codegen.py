@@ -127,9 +127,9 @@ def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "au
     ``form="explicit"`` uses the Solution's solved accelerations and reactions; ``"mass-matrix"`` the
     Solution's mass matrix and forcing (M q̈ = f solved by LU at each call; the reactions from the
     balance equations, by LU too); ``"implicit"`` the Newton–Euler balance equations A·X = b without
-    any symbolic solve.  ``"auto"``: the mass-matrix form when the Solution left its accelerations
-    unsolved (no reaction does work: long chains, whose solved expressions grow without bound), the
-    explicit form otherwise.
+    any symbolic solve.  ``"auto"``: the mass-matrix form when the Solution keeps M q̈ = f unsolved
+    (no reaction does work) and there are more than two degrees of freedom (long chains, whose
+    solved expressions grow without bound), the explicit form otherwise.
     """
     if form not in FORMS:
         raise CodegenError(f"unknown form '{form}'.", hint=f"Use one of: {', '.join(FORMS)}.")
@@ -142,7 +142,8 @@ def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "au
     setup = setup_mode(system, mode)
     if form == "auto":
         reg = system.solve(mode=mode).regime(regime)
-        form = "explicit" if getattr(reg.accelerations, "computed", True) else "mass-matrix"
+        lazy = hasattr(reg.accelerations, "computed")      # the Solution left M q̈ = f unsolved
+        form = "mass-matrix" if lazy and len(setup.reduction.independent) > 2 else "explicit"
     if form == "explicit":
         k = _explicit(system, setup, mode, regime)
     elif form == "mass-matrix":

@@ -21,7 +21,7 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..errors import InputError
+from ..errors import InputError, RigidkinError
 from . import batch
 from .codegen import CompiledModel, Kernel, compile_kernel, kernel
 from .state import StateLayout, parameter_vector, quantity
@@ -245,16 +245,52 @@ def _vector_eval(args, expr, columns, runs) -> np.ndarray:
         return np.broadcast_to(np.asarray(f(*columns), dtype=float), (runs,)).copy()
 
 
+def _condition_events(system, mode, regime: int, layout: StateLayout) -> list[StopAt]:
+    """The regime's sign conditions and the validity conditions other than unilateral contacts, as events."""
+    reg = system.solve(mode=mode).regime(regime)
+    out, seen = [], set()
+    for c in (*reg.conditions, *reg.validity):
+        if c.kind == "validity" and "unilateral" in c.label:
+            continue                      # the reaction's own event covers it
+        name = c.label
+        while name in seen:
+            name += "'"
+        seen.add(name)
+        holds_positive = c.relation in (">", ">=")
+        out.append(StopAt(name, layout.to_plain(c.expr), -1 if holds_positive else 1, True))
+    return out
+
+
+def _assign_regimes(system, mode, layout: StateLayout, Y: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """The regime whose sign conditions hold at each run's initial state (-1: none holds)."""
+    sol = system.solve(mode=mode)
+    runs = len(Y)
+    which = np.full(runs, -1)
+    cols = [np.zeros(runs), *Y.T, *P.T]
+    for i, reg in enumerate(sol.regimes):
+        ok = np.ones(runs, dtype=bool)
+        for c in reg.conditions:
+            v = _vector_eval(layout.arguments(), layout.to_plain(c.expr), cols, runs)
+            ok &= {">": v > 0, ">=": v >= 0, "<": v < 0, "<=": v <= 0}[c.relation]
+        which[(which < 0) & ok] = i
+    return which
+
+
 def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, initial: Mapping | None = None, *,
           t_end: float = 10.0, stop_at: Sequence[str] | str | None = None, record: Sequence[str] = (),
-          mode: Mapping | None = None, regime: int = 0, grid: bool = True, rtol: float = 1e-10, atol: float = 1e-12,
-          max_step: float = np.inf, workers: int | None = None, scheduler=None, chunk: int | None = None,
-          form: str = "auto", backend: str = "auto", progress: Callable[[int, int], None] | None = None) -> SweepResult:
+          mode: Mapping | None = None, regime: int | None = None, grid: bool = True, rtol: float = 1e-10,
+          atol: float = 1e-12, max_step: float = np.inf, workers: int | None = None, scheduler=None,
+          chunk: int | None = None, form: str = "auto", backend: str = "auto",
+          progress: Callable[[int, int], None] | None = None) -> SweepResult:
     """Simulate ``system`` for every combination of ``vary`` (parameters and initial values).
 
-    ``stop_at``: events that end a run (default: any unilateral contact of the mode stops pushing);
-    ``record``: further events recorded without stopping.  ``scheduler``: a Dask scheduler address,
-    a ``distributed.Client``, or ``"local"`` (a LocalCluster of ``workers`` processes).
+    One mode (``mode``, default: every contact closed) is integrated.  Each run starts in the regime
+    whose sign conditions its initial state satisfies (``regime`` forces one); a run that fits none
+    (a slip speed exactly zero) is not integrated and says so in its status.  ``stop_at``: events
+    that end a run (default: a unilateral contact stops pushing, the regime's sign condition or
+    another validity condition fails — the mode or regime ends there); ``record``: further events
+    recorded without stopping.  ``scheduler``: a Dask scheduler address, a ``distributed.Client``,
+    or ``"local"`` (a LocalCluster of ``workers`` processes).
 
     >>> import numpy as np
     >>> from rigidkin import examples
@@ -270,29 +306,64 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
         raise InputError(f"the end time must be a number, not {t_end!r}.", where="sweep") from None
     if not np.isfinite(t_end) or t_end <= 0:
         raise InputError(f"the end time must be a positive finite number, not {t_end}.", where="sweep")
-    k = kernel(system, mode, regime, form)
-    layout = k.layout
-    stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or _mode_events(system, mode))
-    events = [stop_event(layout, k, s, True) for s in stops]
-    events += [stop_event(layout, k, s, False) for s in record if s not in stops]
-    extra = [e for e in events if e.expr is not None]
-    if extra:
-        k = k.with_outputs([e.name for e in extra], [e.expr for e in extra])
-    bev = [batch.Event(e.name, k.output_index(e.name), e.direction, e.terminal) for e in events]
+    layout = StateLayout.of(system)
     inputs, P, Y = plan(system, vary, params, initial, mode, grid)
-    if scheduler is None:
-        model = compile_kernel(k, backend)
-        res = batch.integrate(model, Y, P, (0.0, t_end), bev, rtol, atol, max_step, workers=workers, chunk=chunk)
-        if progress:
-            progress(len(Y), len(Y))
-        used = model.backend
+    if regime is not None or form == "implicit":
+        which = np.full(len(Y), regime or 0)
     else:
-        from .batch_dask import integrate_dask
+        n_regimes = len(system.solve(mode=mode).regimes)
+        which = np.zeros(len(Y), dtype=int) if n_regimes == 1 else _assign_regimes(system, mode, layout, Y, P)
+    parts, used, names = {}, "c", None
+    groups = [int(r) for r in np.unique(which) if r >= 0] or [0]
+    done = 0
+    for r in groups:
+        k = kernel(system, mode, r, form)
+        stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or [])
+        events = [stop_event(layout, k, s, True) for s in stops]
+        if stop_at is None:
+            events = [stop_event(layout, k, s, True) for s in _mode_events(system, mode)]
+            if form != "implicit":
+                events += _condition_events(system, mode, r, layout)
+        events += [stop_event(layout, k, s, False) for s in record if s not in stops]
+        extra = [e for e in events if e.expr is not None]
+        if extra:
+            k = k.with_outputs([e.name for e in extra], [e.expr for e in extra])
+        bev = [batch.Event(e.name, k.output_index(e.name), e.direction, e.terminal) for e in events]
+        names = names or tuple(e.name for e in bev)
+        idx = np.flatnonzero(which == r)
+        if not len(idx):
+            continue
+        sub_progress = None if progress is None else (lambda d, _t, base=done: progress(base + d, len(Y)))
+        if scheduler is None:
+            model = compile_kernel(k, backend)
+            res = batch.integrate(model, Y[idx], P[idx], (0.0, t_end), bev, rtol, atol, max_step, workers=workers,
+                                  chunk=chunk)
+            if sub_progress:
+                sub_progress(len(idx), len(idx))
+            used = model.backend
+        else:
+            from .batch_dask import integrate_dask
 
-        res = integrate_dask(k, Y, P, (0.0, t_end), bev, rtol, atol, max_step, scheduler=scheduler,
-                             workers=workers, chunk=chunk, progress=progress)
-        used = "c (dask)"
-    return SweepResult(system.name, layout, inputs, P, Y, res, used)
+            res = integrate_dask(k, Y[idx], P[idx], (0.0, t_end), bev, rtol, atol, max_step, scheduler=scheduler,
+                                 workers=workers, chunk=chunk, progress=sub_progress)
+            used = "c (dask)"
+        done += len(idx)
+        parts[r] = (idx, res)
+    return SweepResult(system.name, layout, inputs, P, Y, _merge(parts, Y, names or ()), used)
+
+
+def _merge(parts: dict, Y: np.ndarray, names: tuple) -> batch.BatchResult:
+    """The runs of every regime group back in grid order; runs that fit no regime keep status 6."""
+    n, ny, ne = Y.shape[0], Y.shape[1], len(names)
+    out = batch.BatchResult(names, np.full((n, ne), np.nan), np.full((n, ne, ny), np.nan), np.zeros(n), Y.copy(),
+                            np.full(n, 6), np.zeros(n, dtype=int))
+    for idx, res in parts.values():
+        if res.event_names != names:
+            raise RigidkinError("the regimes of this mode give different events.", where="sweep",
+                                hint="Sweep one regime at a time (regime=...).")
+        out.event_t[idx], out.event_y[idx], out.t_end[idx] = res.event_t, res.event_y, res.t_end
+        out.y_end[idx], out.status[idx], out.nfev[idx] = res.y_end, res.status, res.nfev
+    return out
 
 
 def model_of(system, mode=None, regime=0, form="auto", backend="auto") -> CompiledModel:
