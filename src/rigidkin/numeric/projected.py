@@ -238,15 +238,18 @@ class ProjectedModel:
                              hint="Declare value= for each parameter or pass values={name: number}.")
         return vals
 
-    def _function(self, kind: str):
+    def _function(self, kind: str, level: str = "all"):
         """The pieces as one numeric function: "numpy" (lambdify with CSE), "mpmath" (any precision) or
-        "c" (compiled by rigidkin.numeric.codegen; numpy where no C compiler is found)."""
-        if kind not in self._fn:
+        "c" (compiled by rigidkin.numeric.codegen; numpy where no C compiler is found).  ``level="q"``:
+        only the configuration-level pieces (constraint matrix, gaps), cheaper where rates are not needed."""
+        key = (kind, level)
+        if key not in self._fn:
+            pieces = list(self._pieces) if level == "all" else [self._pieces[i] for i in (-5, -4, -2, -1)]
             if kind == "c":
                 from .codegen import c_backend
 
-                shapes = [P.shape for P in self._pieces]
-                flat_fn = c_backend(self._args, [e for P in self._pieces for e in P])
+                shapes = [P.shape for P in pieces]
+                flat_fn = c_backend(self._args, [e for P in pieces for e in P])
 
                 def unpack(*a):
                     flat, out, k = np.asarray(flat_fn(*a), dtype=float).ravel(), [], 0
@@ -255,11 +258,11 @@ class ProjectedModel:
                         k += r * c
                     return out
 
-                self._fn[kind] = unpack
+                self._fn[key] = unpack
             else:
-                self._fn[kind] = sp.lambdify(self._args, list(self._pieces),
-                                             modules="mpmath" if kind == "mpmath" else "numpy", cse=True)
-        return self._fn[kind]
+                self._fn[key] = sp.lambdify(self._args, pieces, modules="mpmath" if kind == "mpmath" else "numpy",
+                                            cse=True)
+        return self._fn[key]
 
     # evaluation ---------------------------------------------------------------------------------
     def _param_vector(self, kind, values=None):
@@ -268,6 +271,15 @@ class ProjectedModel:
             return [v if isinstance(v, mpmath.mpf) else mpmath.mpf(sp.Float(sp.sympify(v), mpmath.mp.dps + 5))
                     for v in (vals[p] for p in self.parameters)]
         return [float(vals[p]) for p in self.parameters]
+
+    def _raw_q(self, kind, t_, q, p):
+        """(A, b, gaps, their Jacobian) at the configuration q (None where there are none)."""
+        out = list(self._function(kind, "q")(t_, *q, *([0] * len(self.coordinates)), *p))
+        if kind != "mpmath":
+            out = [np.array(o, dtype=float) for o in out]
+        A, b = (out[0], out[1]) if self._n_rows else (None, None)
+        g, J = (out[2], out[3]) if self._n_gaps else (None, None)
+        return A, b, g, J
 
     def _raw(self, kind, t_, q, u, p):
         if not self._checked:
@@ -293,9 +305,7 @@ class ProjectedModel:
 
     def _rates(self, kind, t_, q, ui, p):
         n = len(self.coordinates)
-        zeros = [0] * n
-        out = self._raw(kind, t_, q, zeros, p)
-        A, b = out[-5], out[-4]
+        A, b, _, _ = self._raw_q(kind, t_, q, p)
         return _full_rates(kind, A, b, ui, self.independent_index, self.dependent_index, n)
 
     def accelerations(self, q, ui, t_: float = 0.0, kind: str = "numpy", values=None):
@@ -317,8 +327,8 @@ class ProjectedModel:
     def gaps(self, q, t_: float = 0.0, kind: str = "numpy", values=None):
         """The holonomic constraint gaps (zero on the constraint) and their Jacobian in q."""
         p = self._param_vector(kind, values)
-        out = self._raw(kind, t_, q, [0] * len(self.coordinates), p)
-        return out[-2], out[-1]
+        _, _, g, J = self._raw_q(kind, t_, q, p)
+        return g, J
 
     def rhs(self, values=None, backend: str = "numpy"):
         """f(t, y) for y = (q of every coordinate, u_i): dy/dt = (q̇, u̇_i), for scipy's solve_ivp.
