@@ -145,6 +145,30 @@ def _hatch(ax, p0, p1, side, length, n=14, zorder=0.5):
     return ax.add_collection(LineCollection(segs, colors=SURFACE, linewidths=0.8, zorder=zorder))
 
 
+def _clip_to_other_lines(geom: Geometry, q, surf, p0, p1):
+    """The part of the segment p0–p1 on the bodies' side of every other fixed straight surface (a wall
+    stops at the floor); the whole segment when that part would be too short to show."""
+    lo, hi = 0.0, 1.0
+    for _c, kind, other in surfaces(geom.system):
+        if kind != "surface" or other is surf or other.kind != "line" or other.body is not None:
+            continue
+        n = geom.vector(other.normal, q)
+        if n is None:
+            continue
+        n = _xy(n)
+        o = _xy(geom.point(other.point, q))
+        f0, f1 = float(np.dot(p0 - o, n)), float(np.dot(p1 - o, n))
+        if f0 < 0 and f1 < 0:
+            return p0, p1
+        if f0 < 0:
+            lo = max(lo, f0 / (f0 - f1))
+        elif f1 < 0:
+            hi = min(hi, f0 / (f0 - f1))
+    if hi - lo < 0.1:
+        return p0, p1
+    return p0 + lo * (p1 - p0), p0 + hi * (p1 - p0)
+
+
 def surfaces(system) -> list:
     """(constraint, kind, surface object) for every surface and track of the system."""
     out = []
@@ -178,6 +202,7 @@ def draw_surfaces(ax, geom: Geometry, q, span: float, alpha: float = 1.0, only=N
                 body_pt = _xy(geom.point(c.centre, q))
                 s_body = float(np.dot(body_pt - p, tang))
                 p0, p1 = p + tang * (s_body - span), p + tang * (s_body + span)
+                p0, p1 = _clip_to_other_lines(geom, q, surf, p0, p1)
                 out.append(ax.plot(*np.array([p0, p1]).T, color=SURFACE, lw=1.5, alpha=alpha, zorder=0.6)[0])
                 out.append(_hatch(ax, p0, p1, -n, 0.06 * span, n=22, zorder=0.5))
             else:
