@@ -17,6 +17,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
+import rigidkin as rk
 from rigidkin.examples import bicycle
 
 pytestmark = pytest.mark.slow
@@ -87,6 +88,9 @@ def test_model_structure(model):
     q = model.configuration([0.2, 0.3, 0, 0, 0, 0, 0, 0])
     assert abs(float(np.ravel(model.gaps(q)[0])[0])) < 1e-13
     assert q[6] != 0.0
+    # the closed-form solve would not finish: it says so at once and points to the projected equations
+    with pytest.raises(rk.ModelError, match="projected"):
+        s.solve()
 
 
 def test_lean_steer_matrices_equal_the_benchmark(matrices):

@@ -52,8 +52,19 @@ _DESCRIPTIONS = {
 }
 
 
+class WhippleBicycle(rk.System):
+    """The bicycle's System: ``solve`` points to the projected equations instead of running for hours."""
+
+    def solve(self, *args, **kwargs):
+        raise rk.ModelError("System.solve eliminates the dependent rates and every reaction in closed form, which "
+                            "does not finish in useful time for the Whipple bicycle (five dependent rates through "
+                            "the front wheel's contact geometry).", where="bicycle",
+                            hint="Use rigidkin.examples.bicycle.projected() (rigidkin.numeric.projected): its "
+                                 "linearise(), accelerations() and rhs() give the motion numerically.")
+
+
 def build() -> rk.System:
-    s = rk.System("bicycle", title="Whipple bicycle (benchmark of Meijaard et al. 2007)",
+    s = WhippleBicycle("bicycle", title="Whipple bicycle (benchmark of Meijaard et al. 2007)",
                   statement="The benchmark bicycle: rear wheel, rear frame with rider, front frame and front "
                             "wheel, hinged at the hubs and the steering head, rolling without slip on level "
                             "ground (Meijaard, Papadopoulos, Ruina & Schwab 2007, Table 1).")
