@@ -108,3 +108,24 @@ def test_plastic_impact_on_a_rough_floor_starts_rolling():
     assert r.segments[-1].mode == {"floor": "stick"}
     last = r.segment == 1
     assert np.allclose(r["dot(x)"][last], 5 * vx / 7, rtol=0, atol=1e-10)
+
+
+@pytest.mark.parametrize("mu, sticks", [(0.1, False), (0.5, True)])
+def test_impact_on_a_coulomb_floor_sticks_or_slides(mu, sticks):
+    # sliding: the friction impulse µ Λ_n with Λ_n = m v (e = 0) gives v_x⁺ = v_x − µ v, ω⁺ = (5/2) µ v / r;
+    # sticking (µ v ≥ 2 v_x / 7): rolling at 5 v_x / 7.  Either way the impulses pass through the contact
+    # point, so the ball ends rolling at 5 v_x / 7.
+    vx, h, r_ = 1.5, 0.2, 0.1
+    s = dropped_disk(mu, h=h, vx=vx)
+    res = simulate(s, 1.5)
+    ev = res.events[0]
+    v = np.sqrt(2 * G * h)
+    assert ev.kind == "impact" and abs(ev.after["dot(y)"]) < 1e-12
+    if sticks:
+        assert abs(ev.after["dot(x)"] - 5 * vx / 7) < 1e-10
+        assert res.segments[1].mode == {"floor": "stick"} and len(res.events) == 1
+    else:
+        assert abs(ev.after["dot(x)"] - (vx - mu * v)) < 1e-10
+        assert abs(ev.after["dot(phi)"] - 2.5 * mu * v / r_) < 1e-9
+        assert res.events[1].kind == "sticks"
+    assert abs(res.final_state["dot(x)"] - 5 * vx / 7) < 1e-9

@@ -9,9 +9,12 @@ the tangential slip speed too):
     J_n u⁺ + b_n = −e (J_n u⁻ + b_n)   (Newton's coefficient of restitution e)
     J_t u⁺ + b_t = 0              (rolling contact: no slip after the impact)
 
-so Λ = (J M⁻¹ Jᵀ)⁻¹ (v_target − v⁻) and u⁺ = u⁻ + M⁻¹ Jᵀ Λ.  Smooth and Coulomb contacts take a
-normal impulse only (the tangential impulse of a Coulomb contact during the impact is neglected).
-The dependent rates follow from the mode's rate relations; the kinetic energy lost is reported.
+so Λ = (J M⁻¹ Jᵀ)⁻¹ (v_target − v⁻) and u⁺ = u⁻ + M⁻¹ Jᵀ Λ.  A smooth contact takes a normal
+impulse only.  A Coulomb contact (planar) sticks if the tangential impulse that stops the slip is
+within µ times the normal one; otherwise it slides through the impact with the tangential impulse
+−σ µ Λ_n opposing the slip σ it arrived with (Λ_n from the restitution condition along the
+direction J_nᵀ − σ µ J_tᵀ).  The dependent rates follow from the mode's rate relations; the
+kinetic energy lost is reported.
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ import numpy as np
 from sympy.physics.vector import dynamicsymbols
 
 from ..kinematics import linear_form
-from ..model.constraints import ROLLING
+from ..model.constraints import ROLLING, Coulomb
 from .modes import SLIP, STICK, Hybrid, mode_key
 from .rhs import SimulationError, compile_functions
 
@@ -47,7 +50,8 @@ def _impact_functions(hybrid: Hybrid, mode: dict, contact: str):
         sol = hybrid.solution(mode)
         setup = sol.setup
         c = hybrid.contacts[contact]
-        rows = c.rows(setup.kin, STICK if c.friction == ROLLING else SLIP)
+        rough = c.friction == ROLLING or (isinstance(c.friction, Coulomb) and setup.kin.planar)
+        rows = c.rows(setup.kin, STICK if rough else SLIP)
         rates = [q.diff(t) for q in sol.coordinates]
         A, b = linear_form([setup.scalar(r.velocity) for r in rows], rates)
         M = sol.regime(0).mass_matrix
@@ -75,10 +79,20 @@ def impact(hybrid: Hybrid, mode: dict, contact: str, t_: float, y: np.ndarray, p
     try:
         Minv_Jt = np.linalg.solve(M, J.T)
         Lam = np.linalg.solve(J @ Minv_Jt, target - v_before)
+        u_after = u + Minv_Jt @ Lam
+        c = hybrid.contacts[contact]
+        if isinstance(c.friction, Coulomb) and m == 2:
+            mu = hybrid._param_value(c.friction.mu, p)
+            if abs(Lam[1]) > mu * abs(Lam[0]):            # cannot stop the slip: it slides through the impact
+                sigma = 1.0 if v_before[1] > 0 else -1.0
+                d = J[0] - sigma * mu * J[1]
+                Minv_d = np.linalg.solve(M, d)
+                lam_n = (target[0] - v_before[0]) / float(J[0] @ Minv_d)
+                Lam = np.array([lam_n, -sigma * mu * lam_n])
+                u_after = u + Minv_d * lam_n
     except np.linalg.LinAlgError:
         raise SimulationError(f"at t = {t_:.10g} the impact at {contact} cannot be resolved: the mass matrix "
                               "or the contact's constraint rows are singular here.", where=hybrid.system.name) from None
-    u_after = u + Minv_Jt @ Lam
     y_after = np.array(y, dtype=float)
     for s, v in zip(slots, u_after):
         y_after[lay.n + s] = v
