@@ -48,7 +48,7 @@ def plot_result(result, path=None, title: str | None = None):
                 ax.plot(t[m], arr[m], label=lab if s == seg_idx[0] else None, **style)
         ax.set_ylabel(ylabel)
         if series:
-            ax.legend(loc="upper left", fontsize=8, framealpha=0.85)
+            ax.legend(loc="best", fontsize=8, framealpha=0.85)
         ax.grid(True, alpha=0.3)
 
     q = result.q
@@ -59,15 +59,16 @@ def plot_result(result, path=None, title: str | None = None):
     lines(axes[1], [(_label(f"d{greek(n)}/dt", _UNITS.get(kinds.get(n, "other"), ("", ""))[1]), r[f"dot({n})"])
                     for n in names], "rates")
     lines(axes[2], [(greek(k), v) for k, v in result.reactions.items()], "reactions [N, N·m]")
-    for k, v in result.limits.items():        # ± the friction limit µN, dashed
+    limits = {k: v for k, v in result.limits.items() if np.any(v != 0)}
+    for k, v in limits.items():               # ± the friction limit µN, dashed
         for s in np.unique(seg_idx):
             m = seg_idx == s
             for sgn in (1, -1):
                 axes[2].plot(t[m], sgn * v[m], color="0.45", lw=0.9, ls="--",
                              label=f"±µ{k[3:]} (friction limit)" if (s == seg_idx[0] and sgn > 0)
                              else None)
-    if result.limits:
-        axes[2].legend(loc="upper left", fontsize=8, framealpha=0.85)
+    if limits:
+        axes[2].legend(loc="best", fontsize=8, framealpha=0.85)
     E0 = result.energy["E"][0]
     e_series = [("T kinetic", result.energy["T"]), ("U potential", result.energy["U"]),
                 ("E = T + U", result.energy["E"])]
@@ -77,8 +78,9 @@ def plot_result(result, path=None, title: str | None = None):
           {"E = T + U": {"color": "black", "lw": 2.2, "ls": "--"},
            "E0 + W (work done on the system)": {"color": "tab:red", "lw": 1.0, "ls": "-."}})
     axes[3].set_xlabel("t [s]")
-    if not result.reactions:
-        axes[2].text(0.5, 0.5, "no reactions", transform=axes[2].transAxes, ha="center", va="center")
+    if not result.reactions and not limits:
+        axes[2].text(0.5, 0.5, "no reactions (every contact open)", transform=axes[2].transAxes, ha="center",
+                     va="center", color="0.3")
     # modes as shaded bands
     shades = ["#f2f2f2", "#dde8f5", "#f7e6d5", "#e2f0dc", "#efe0f0", "#f5f1d0"]
     desc = []
@@ -90,9 +92,14 @@ def plot_result(result, path=None, title: str | None = None):
         for ax in axes:
             ax.axvspan(s.t0, s.t1, color=c, zorder=0, lw=0)
     # events
+    last_label = -np.inf
+    span = max(t[-1] - t[0], 1e-300)
     for i, e in enumerate(result.events, 1):
         for ax in axes:
             ax.axvline(e.t, color="0.25", ls=":", lw=1.0)
+        if e.t - last_label < 0.03 * span:      # too close to the previous label to be read
+            continue
+        last_label = e.t
         axes[0].annotate(f"[{i}]", (e.t, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 3),
                          textcoords="offset points", ha="center", va="bottom", fontsize=9, color="0.15")
         if len(result.events) <= 6:        # the event's name along its line, inside the top panel

@@ -268,7 +268,7 @@ class Hybrid:
         for name, c in self.contacts.items():
             st = mode[name]
             if st == OPEN:
-                watch(Watch("impact", name, f"contact {name} closes (impact)", -1, quantity=f"gap of {name}"),
+                watch(Watch("impact", name, f"impact at {name}", -1, quantity=f"gap of {name}"),
                       c.gap(kin))
                 continue
             if c.unilateral:
