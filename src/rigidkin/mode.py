@@ -16,6 +16,7 @@ import sympy as sp
 from .errors import ModelError
 from .kinematics import Kinematics, Reduction, reduce_constraints
 from .model.loads import Application, SignChoice
+from .printing import text
 from .trace import Trace
 
 
@@ -107,15 +108,16 @@ def _trace_frames(system, kin, trace: Trace) -> None:
                   f"({F.basis[2]} = {F.basis[0]} × {F.basis[1]}).")
     for c in system.coordinate_info.values():
         trace.add("Frames and coordinates", f"Coordinate {c.name}", [],
-                  f"{c.name} ({c.kind}): {c.sense or c.description or 'no sense given'}")
+                  f"{text(c.symbol)} ({c.kind}): {c.sense or c.description or 'no sense given'}")
     for fr in system.frames.values():
         if fr.parent is None:
             continue
         eqs = [(v, v.express(fr.parent.ref)) for v in (fr.x, fr.y, fr.z)]
         if fr.sequence:
-            why = f"{fr.name} is rotated from {fr.parent.name} by the body-fixed sequence {fr.sequence}."
+            why = (f"{fr.name} is rotated from {fr.parent.name} by the body-fixed sequence {fr.sequence} "
+                   f"({', '.join(text(a) for a in fr.angles)}).")
         else:
-            why = f"{fr.name} is rotated from {fr.parent.name} by {fr.angle} about {fr.axis}."
+            why = f"{fr.name} is rotated from {fr.parent.name} by {text(fr.angle)} about {text(fr.axis)}."
         if fr.description:
             why += " " + fr.description
         trace.add("Frames and coordinates", f"Frame {fr.name} and its basis", eqs, why)

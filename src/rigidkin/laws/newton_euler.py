@@ -3,7 +3,8 @@
 For each body: F = m ā (the sum of the forces on the free-body diagram, reactions included) and
 M̄ = d(H̄)/dt with H̄ = Ī·ω (the rate taken in the inertial frame: Ī·α + ω × Ī·ω when Ī is fixed in
 the body).  Each is resolved into scalar equations along the inertial basis (in a planar problem:
-the two in-plane force equations and the moment equation about Ez).  A massless body gives
+the two in-plane force equations and the moment equation about Ez; in 3D the moment equations along
+the body's own axes, Euler's equations in their usual form).  A massless body gives
 ΣF = 0 and ΣM = 0 about its reference point.
 """
 
@@ -119,7 +120,12 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
             rhs = kin.simplify_expr(setup.scalar(bal.mass_accel.dot(e)))
             out.append(BalanceEquation(f"Euler's 1st law for {b.name} along {name}", b.name,
                                        "newton-euler", lhs, rhs))
-        for e, name in moment_dirs:
+        dirs = moment_dirs
+        if not kin.planar:
+            # in 3D, resolve Euler's 2nd law along the body's own axes: Euler's equations in their usual form
+            fr = b.frame
+            dirs = [(fr.x, fr.basis[0]), (fr.y, fr.basis[1]), (fr.z, fr.basis[2])]
+        for e, name in dirs:
             lhs = kin.simplify_expr(setup.scalar(bal.moment.dot(e)))
             rhs = kin.simplify_expr(setup.scalar(bal.momentum_rate.dot(e)))
             out.append(BalanceEquation(f"Euler's 2nd law for {b.name} about its {ref}, along {name}", b.name,
