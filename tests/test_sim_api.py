@@ -107,11 +107,20 @@ def test_outputs_csv_json_plot_and_dense_state(ladder, tmp_path):
     assert len(fig.axes) >= 4
 
 
-def test_a_mode_entered_with_another_constant_of_integration_stops_rather_than_drift():
+def test_a_mode_entered_with_another_constant_of_integration_continues_exactly():
     # a sphere dropped onto the fixed sphere off the line φ = r θ/(R + r) the rolling relation was integrated
-    # from: rolling after the (plastic) impact would need another constant, and its equations depend on φ
+    # from: after the (plastic) impact it rolls with its own constant of integration (the mode's equations keep
+    # φ as a coordinate), then leaves where N = 0. By hand, rolling from (φa, φ̇a) conserves
+    # (7/10) m (R+r)² φ̇² + m g (R+r) cos φ, and N = 0 where g cos φ = (R+r) φ̇²:
+    # cos φ_leave = (10 cos φa + 7 (R+r) φ̇a²/g)/17.
     s = build("sphere-on-sphere")
-    R, r_ = 1.0, 0.1
+    R, r_, g = 1.0, 0.1, 9.81
     res = simulate(s, 2.0, initial_state={"theta": 0.0, "phi": 0.3, "rho": R + r_ + 0.05})
     assert res.events[0].kind == "impact"
-    assert res.status == "stopped" and "integrated from the declared initial configuration" in res.message
+    after = res.events[0].after
+    phia, wa = after["phi"], after["dot(phi)"]
+    assert abs((R + r_) * after["dot(phi)"] - r_ * after["dot(theta)"]) < 1e-9     # rolling after the impact
+    leave = [e for e in res.events if e.kind == "opens"]
+    assert leave, res.message
+    cos_leave = (10 * np.cos(phia) + 7 * (R + r_) * wa**2 / g) / 17
+    assert abs(np.cos(leave[0].state["phi"]) - cos_leave) < 1e-8

@@ -194,6 +194,7 @@ class Reduction:
     rate_map: dict = field(default_factory=dict)       # q̇_d → expr(q, q̇_i)
     accel_map: dict = field(default_factory=dict)      # q̈_d → expr(q, q̇_i, q̈_i)
     coord_map: dict = field(default_factory=dict)      # q_d → expr(q_i) where integrated
+    rate_integrated: frozenset = frozenset()           # the q_d of coord_map found by integrating rate relations
     built_in: tuple = ()                               # rows satisfied identically by the coordinates
     relating: tuple = ()                               # rows that relate the rates
     relations: tuple = ()                              # (lhs, rhs, why) for the trace
@@ -395,6 +396,7 @@ def _integrate(system, kin, red: Reduction, relating, trace):
                     if not val.has(*plain.values()):
                         solved[back[d]] = kin.simplify_expr(val.xreplace(back))
     # (b) exact rate relations q̇_d = Σ B_j(q_i) q̇_j
+    from_rates = set()
     ind = list(red.independent)
     for q in dep:
         if q in solved:
@@ -431,7 +433,9 @@ def _integrate(system, kin, red: Reduction, relating, trace):
         if q0 is not None:
             const = sp.nsimplify(q0) - pot_t.xreplace(_initial(system, ind))
         solved[q] = kin.simplify_expr(pot_t + const)
+        from_rates.add(q)
     red.coord_map = solved
+    red.rate_integrated = frozenset(from_rates)
 
 
 def _initial(system, coords) -> dict:

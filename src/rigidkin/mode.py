@@ -9,7 +9,7 @@ same free-body diagrams.  It records the frames, coordinates and kinematics in t
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import sympy as sp
 
@@ -51,16 +51,23 @@ class ModeSetup:
         return [(r.reaction, r) for r in self.rows if r.unilateral]
 
 
-def mode_key(system, mode: dict, independent, substitutions) -> tuple:
+def mode_key(system, mode: dict, independent, substitutions, integrate: bool = True) -> tuple:
     ind = None if independent is None else tuple(str(q) for q in independent)
-    return (tuple(sorted(mode.items())), ind, tuple(sorted((str(k), str(v)) for k, v in substitutions.items())))
+    return (tuple(sorted(mode.items())), ind, tuple(sorted((str(k), str(v)) for k, v in substitutions.items())),
+            integrate)
 
 
-def setup_mode(system, mode: dict | None = None, independent=None, substitutions: dict | None = None) -> ModeSetup:
-    """Build (and cache on the system) the ModeSetup for ``mode``."""
+def setup_mode(system, mode: dict | None = None, independent=None, substitutions: dict | None = None,
+               integrate: bool = True) -> ModeSetup:
+    """Build (and cache on the system) the ModeSetup for ``mode``.
+
+    With ``integrate=False`` the dependent coordinates whose relation comes from integrating a rate
+    relation (φ = (R − r)θ/r, with a constant fixed by the initial configuration) stay coordinates of
+    their own: the equations hold whatever the constant (a mode entered later in a simulation).
+    """
     mode = dict(mode or {})
     substitutions = dict(substitutions or {})
-    key = ("mode",) + mode_key(system, mode, independent, substitutions)
+    key = ("mode",) + mode_key(system, mode, independent, substitutions, integrate)
     if key in system._cache:
         return system._cache[key]
     for name in mode:
@@ -80,6 +87,9 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
         rows.extend(c.rows(kin, st))
         loads.extend(c.loads(kin, st))
     red = reduce_constraints(system, kin, rows, independent, trace)
+    if not integrate and red.rate_integrated:
+        red = replace(red, coord_map={k: v for k, v in red.coord_map.items() if k not in red.rate_integrated},
+                      rate_integrated=frozenset())
     apps, signs = [], []
     for ld in loads:
         apps.extend(ld.applications(kin))

@@ -37,7 +37,8 @@ def parse_method(method: str, options: dict | None = None) -> tuple[str, dict]:
     return name, options
 
 
-def solve_with(system, method: str, mode: dict, independent, substitutions: dict, **options):
+def solve_with(system, method: str, mode: dict, independent, substitutions: dict, integrate: bool = True,
+               **options):
     """Derive the equations of motion of ``system`` in ``mode`` with the law named ``method``."""
     from ..mode import setup_mode
     from ..solution import solve_balance
@@ -47,10 +48,10 @@ def solve_with(system, method: str, mode: dict, independent, substitutions: dict
     name, options = parse_method(method, options)
     key = ("solution", name, tuple(sorted(options.items(), key=str)), tuple(sorted(mode.items())),
            None if independent is None else tuple(map(str, independent)),
-           tuple(sorted((str(k), str(v)) for k, v in substitutions.items())))
+           tuple(sorted((str(k), str(v)) for k, v in substitutions.items())), integrate)
     if key in system._cache:
         return system._cache[key]
-    setup = setup_mode(system, mode, independent, substitutions)
+    setup = setup_mode(system, mode, independent, substitutions, integrate)
     label = name if name != "about-point" else f"about-point:{options['point']}"
     trace = Trace(law=label)
     trace.extend(setup.trace)
@@ -67,7 +68,7 @@ def solve_with(system, method: str, mode: dict, independent, substitutions: dict
         else:
             eqs = equations_for(setup, name)
             setup.trace = setup_trace
-            reference = solve_with(system, "newton-euler", mode, independent, substitutions)
+            reference = solve_with(system, "newton-euler", mode, independent, substitutions, integrate)
             setup.trace = trace
             from .assemble import solution_from_rows
 

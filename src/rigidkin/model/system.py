@@ -483,17 +483,19 @@ class System:
 
     # solving -------------------------------------------------------------------------------------
     def solve(self, method: str = "newton-euler", mode: dict[str, str] | None = None,
-              independent=None, substitutions: dict | None = None):
+              independent=None, substitutions: dict | None = None, integrate: bool = True):
         """Derive the equations of motion and reactions; returns a :class:`rigidkin.Solution`.
 
         ``mode`` maps contact names to ``"slip"``, ``"stick"`` or ``"open"``;
         ``independent`` lists the coordinates to keep (others are eliminated by the constraints);
-        ``substitutions`` replaces parameters (e.g. ``{mu: 0}`` on a frictionless stretch).
+        ``substitutions`` replaces parameters (e.g. ``{mu: 0}`` on a frictionless stretch);
+        ``integrate=False`` keeps the coordinates whose relation comes from integrating a rate relation
+        (a constant of integration) as coordinates of their own, as a simulation entering the mode needs.
         """
         from ..laws import solve_with
 
         return solve_with(self, method, mode=mode or {}, independent=independent,
-                          substitutions=substitutions or {})
+                          substitutions=substitutions or {}, integrate=integrate)
 
     def _repr_html_(self) -> str:
         from ..report.jupyter import system_html

@@ -204,7 +204,7 @@ class Hybrid:
         key = mode_key(mode)
         if key not in self._solutions:
             try:
-                self._solutions[key] = self.system.solve(mode=dict(mode))
+                self._solutions[key] = self.system.solve(mode=dict(mode), integrate=False)
             except ModelError as exc:   # ConstraintError included
                 self._solutions[key] = ModeUnavailable(
                     f"the mode ({describe_mode(self.system, mode)}) cannot be derived from the model: "
@@ -338,9 +338,14 @@ class Hybrid:
         vals = [float(v) for v in f(t_, *y[:2 * self.layout.n], *p)]
         return vals[0], vals[1], (vals[2] if n > 2 else None)
 
-    def relation_functions(self, mode: dict):
-        """(dependent coordinates' slots, q_d from the integrated relations, q̇_d from the rate relations)."""
-        key = mode_key(mode)
+    def relation_functions(self, mode: dict, integrated: bool = False):
+        """(dependent coordinates' slots, q_d from the integrated relations, q̇_d from the rate relations).
+
+        The mode's equations keep the coordinates found by integrating a rate relation (their constant
+        depends on where the mode is entered); ``integrated=True`` adds those relations too, as an
+        initial configuration needs them (constant from the declared initial values).
+        """
+        key = (mode_key(mode), integrated)
         if key not in self._relation_fns:
             sol = self.solution(mode)
             lay = self.layout
@@ -349,8 +354,13 @@ class Hybrid:
             for q in sol.dependent:
                 slots.append(lay.coordinates.index(q))
                 exprs.append(red.rate_map[q.diff(t)])
-            rel_slots = [lay.coordinates.index(q) for q in sol.relations]
-            rel_fn = compile_functions(lay.arguments(), [lay.to_plain(v) for v in sol.relations.values()])
+            relations = dict(sol.relations)
+            if integrated:
+                from ..mode import setup_mode
+
+                relations = dict(setup_mode(self.system, dict(mode)).reduction.coord_map)
+            rel_slots = [lay.coordinates.index(q) for q in relations]
+            rel_fn = compile_functions(lay.arguments(), [lay.to_plain(v) for v in relations.values()])
             rate_fn = compile_functions(lay.arguments(), [lay.to_plain(e) for e in exprs])
             self._relation_fns[key] = (rel_slots, rel_fn, slots, rate_fn)
         return self._relation_fns[key]

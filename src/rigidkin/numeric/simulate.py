@@ -122,7 +122,7 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
         y = np.zeros(2 * n)
         for i, v in given.items():
             y[i] = v
-        rel_slots, rel_fn, rate_slots, rate_fn = hyb.relation_functions(cand)
+        rel_slots, rel_fn, rate_slots, rate_fn = hyb.relation_functions(cand, integrated=True)
         for s, v in zip(rel_slots, rel_fn(t0, *y, *p) if rel_slots else ()):
             if s not in given:
                 y[s] = float(v)
