@@ -70,7 +70,7 @@ def integrate_dask(kernel: Kernel, y0: np.ndarray, params: np.ndarray, t_span, e
         n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
         chunk = chunk or max(64, -(-n // (4 * n_workers)))
         pieces = [(a, min(n, a + chunk)) for a in range(0, n, chunk)]
-        code_f = client.scatter(code, broadcast=True)
+        code_f = client.scatter(code, broadcast=True, hash=False)   # a key of its own: never shared, never lost
         futures = {client.submit(_chunk_task, code_f, y0[a:b], P[a:b], t_span, list(events), rtol, atol, max_step,
                                  max_steps, pure=False): (a, b) for a, b in pieces}
         parts: dict[int, batch.BatchResult] = {}
