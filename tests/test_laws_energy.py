@@ -93,3 +93,13 @@ def test_work_energy_eom_single_dof():
     assert values_match(eq.expr, card, [th], factor=True)
     with pytest.raises(Exception, match="degrees of freedom"):
         E.equations(setup_mode(build("collar-rod")))
+
+
+def test_first_integral_multi_dof_and_refusal():
+    s = build("collar-rod")   # two degrees of freedom, conservative
+    E_ = E.first_integral(s)
+    sol = s.solve()
+    acc = {q.diff(t, 2): a for q, a in sol.accelerations.items()}
+    assert values_match(sp.diff(E_, t).xreplace(acc), 0, list(s.coordinates))
+    with pytest.raises(Exception, match="not a first integral"):
+        E.first_integral(build("slip-to-roll"))

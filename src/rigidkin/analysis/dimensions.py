@@ -216,10 +216,32 @@ def check_solution(solution) -> list[DimensionReport]:
         tag = f" (regime {i + 1})" if len(solution.regimes) > 1 else ""
         for k, e in enumerate(r.eom):
             out.append(check_equation(e, 0, dims, f"equation of motion {k + 1}{tag}"))
-        for q, a in r.accelerations.items():
+        if not _ready(r.accelerations) or not _ready(r.reactions):
+            out.append(_mass_form(r, solution.coordinates, dims, tag))
+        for q, a in (r.accelerations.items() if _ready(r.accelerations) else ()):
             out.append(check_equation(q.diff(t, 2), a, dims, f"acceleration {text(q.diff(t, 2))}{tag}"))
-        for name, v in r.reactions.items():
+        for name, v in (r.reactions.items() if _ready(r.reactions) else ()):
             sym = sp.Symbol(name, real=True)
             if v != 0 and _lookup(dims, sym) is not None:
                 out.append(check_equation(sym, v, dims, f"reaction {name}{tag}"))
     return out
+
+
+def _ready(mapping) -> bool:
+    """False for a lazy mapping not computed yet (large systems: not worth solving just to check units)."""
+    return getattr(mapping, "computed", True)
+
+
+def _mass_form(regime, coords, dims, tag) -> DimensionReport:
+    """Each row of M q̈ = f: its inertia and forcing terms share one dimension."""
+    M, f = regime.mass_matrix, regime.forcing
+    bad, last = [], None
+    for i in range(M.rows):
+        lhs = sum((M[i, j] * q.diff(t, 2) for j, q in enumerate(coords)), sp.Integer(0))
+        rep = check_equation(lhs, f[i], dims, f"row {i + 1} of M q̈ = f{tag}")
+        last = rep
+        if not rep.consistent:
+            bad.append(rep)
+    if bad:
+        return bad[0]
+    return last if last is not None else DimensionReport(f"M q̈ = f{tag}", sp.Integer(0), sp.Integer(0), (), None, ())

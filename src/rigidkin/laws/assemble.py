@@ -18,7 +18,7 @@ from ..errors import ConstraintError, ModelError
 from ..kinematics import linear_form, solve_square
 from ..mode import ModeSetup
 from ..printing import text
-from ..solution import Regime, Solution
+from ..solution import LazyMap, Regime, Solution
 from ..trace import Trace
 
 t = dynamicsymbols._t
@@ -29,6 +29,18 @@ def eom_row(expr: sp.Expr, accels) -> sp.Expr:
     e = algebra.strip_factors(sp.sympify(expr))
     e = sp.collect(sp.expand(e), accels, func=sp.factor_terms) if sp.count_ops(e) < 200 else e
     return algebra.leading_sign(e, accels) * e
+
+
+def _accelerations(M, f, coords, kin, method, where):
+    """q̈ = M⁻¹ f: at once for up to two coordinates, else when first asked (a LazyMap)."""
+    def solve():
+        try:
+            return dict(zip(coords, solve_square(M, f, simplify=kin.simplify_expr)))
+        except ZeroDivisionError:
+            raise ConstraintError(f"the equations of {method} are singular in the accelerations.",
+                                  where=where) from None
+
+    return MappingProxyType(solve()) if len(coords) <= 2 else LazyMap(solve)
 
 
 def solution_from_rows(setup: ModeSetup, equations, method: str, trace: Trace, reference: Solution) -> Solution:
@@ -52,23 +64,21 @@ def solution_from_rows(setup: ModeSetup, equations, method: str, trace: Trace, r
             raise ModelError(f"{method}: the sign(s) {', '.join(map(str, left))} are not fixed by a regime.",
                              where=setup.system.name)
         A, b = linear_form(exprs, accels)
-        try:
-            x = solve_square(A, -b, simplify=kin.simplify_expr)
-        except ZeroDivisionError:
-            raise ConstraintError(f"the equations of {method} are singular in the accelerations.",
-                                  where=setup.system.name) from None
-        acc = dict(zip(red.independent, x))
         M = A.applyfunc(kin.simplify_expr)
         f = (-b).applyfunc(kin.simplify_expr)
-        eom = [eom_row(e, accels) for e in exprs]
-        trace.add("Solving", "Accelerations", [(q.diff(t, 2), a) for q, a in acc.items()],
-                  f"solved from the {len(exprs)} equation(s) of {method}"
-                  + (f" while {ref.describe()}" if ref.conditions else "") + ".")
-        if ref.reactions:
-            trace.add("Solving", "Reactions (from Euler's laws)", [(sp.Symbol(k), v) for k, v in ref.reactions.items()],
-                      f"{method} eliminates the reactions; they follow from Euler's laws with these accelerations.")
-        regimes.append(Regime(ref.conditions, ref.validity, ref.signs, tuple(eom), MappingProxyType(acc),
-                              ref.reactions, M, f))
+        eom = [eom_row(e, accels) if sp.count_ops(e) < 400 else e for e in exprs]
+        acc = _accelerations(M, f, red.independent, kin, method, setup.system.name)
+        if isinstance(acc, LazyMap):
+            trace.add("Solving", "Mass matrix and forcing", [(sp.Symbol("M"), M), (sp.Symbol("f"), f)],
+                      f"the equations of {method} as M q̈ = f" + (f" while {ref.describe()}" if ref.conditions
+                                                                  else "") + "; solved for q̈ when asked.")
+        else:
+            trace.add("Solving", "Accelerations", [(q.diff(t, 2), a) for q, a in acc.items()],
+                      f"solved from the {len(exprs)} equation(s) of {method}"
+                      + (f" while {ref.describe()}" if ref.conditions else "") + ".")
+        trace.add("Solving", "Reactions (from Euler's laws)", [],
+                  f"{method} eliminates the reactions; they follow from Euler's laws with these accelerations.")
+        regimes.append(Regime(ref.conditions, ref.validity, ref.signs, tuple(eom), acc, ref.reactions, M, f))
     trace.add("Solving", "Equations of motion", [(e, 0) for r in regimes for e in r.eom],
               f"the equations of {method}, free of reactions: " + "; ".join(text(e) for e in accels) + ".")
     return Solution(setup.system, method, MappingProxyType(dict(setup.states)), tuple(red.independent),

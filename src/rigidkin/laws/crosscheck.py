@@ -198,6 +198,69 @@ def same_equation(a, b) -> tuple[bool, str]:
     return False, "symbolic: not a constant multiple"
 
 
+class Sampler:
+    """Random states and parameter sets, shared by every expression compared; accelerations from M q̈ = f.
+
+    Large systems are compared this way: the accelerations at each random state come from solving the
+    mass-matrix form numerically, never from a symbolic inverse.
+    """
+
+    def __init__(self, n: int = SAMPLES, seed: int = 5):
+        self.n, self.rng = n, random.Random(seed)
+        self.values: list[dict] = [{} for _ in range(n)]
+        self._funcs: dict = {}
+
+    def _value(self, i: int, s):
+        d = self.values[i]
+        if s not in d:
+            d[s] = self.rng.uniform(0.1, 1.0) if s == t else complex(algebra.random_point([s], self.rng)[s])
+        return d[s]
+
+    def evaluate(self, expr, i: int, extra: dict | None = None) -> complex:
+        key = sp.sympify(expr)
+        if key not in self._funcs:
+            plain, _ = algebra.plain_state(key)
+            syms = sorted(plain.free_symbols, key=str)
+            self._funcs[key] = (syms, sp.lambdify(syms, plain, modules=["numpy"]))
+        syms, fn = self._funcs[key]
+        args = [extra[s] if extra and s in extra else self._value(i, s) for s in syms]
+        with np.errstate(all="ignore"):
+            return complex(fn(*args))
+
+    def accelerations(self, regime, coords, i: int) -> dict:
+        """{plain q̈ symbol: value} at point ``i`` from the regime's M q̈ = f, solved numerically."""
+        M, f = regime.mass_matrix, regime.forcing
+        Mn = np.array([[self.evaluate(M[r, c], i) for c in range(M.cols)] for r in range(M.rows)], dtype=complex)
+        fn = np.array([self.evaluate(f[r], i) for r in range(f.rows)], dtype=complex)
+        a = np.linalg.solve(Mn, fn)
+        return {sp.Symbol(f"_{q.func.__name__}_d2", real=True): complex(v) for q, v in zip(coords, a)}
+
+    def residual(self, expr, regime, coords, i: int, extra: dict | None = None) -> tuple[complex, float]:
+        """(value, scale) of ``expr`` with the regime's accelerations (and ``extra`` plain values) at point i."""
+        vals = dict(self.accelerations(regime, coords, i))
+        vals.update(extra or {})
+        terms = sp.Add.make_args(sp.sympify(expr))
+        parts = [self.evaluate(a, i, vals) for a in terms]
+        return sum(parts), max([1.0] + [abs(p) for p in parts])
+
+
+def holds_numerically(expr, regime, coords, sampler: Sampler | None = None, extra=None) -> tuple[bool, str]:
+    """``expr`` (with q̈) vanishes when the regime's accelerations are substituted, at random states."""
+    sampler = sampler or Sampler()
+    used = 0
+    for i in range(sampler.n):
+        try:
+            v, scale = sampler.residual(expr, regime, coords, i, extra)
+        except np.linalg.LinAlgError:
+            continue
+        if not np.isfinite(v):
+            continue
+        used += 1
+        if abs(v) > RTOL * scale:
+            return False, f"numeric: fails at a random state (residual {abs(v):.3g})"
+    return used > 0, f"numeric: {used} random states and parameter sets, rel. tol. {RTOL:g}"
+
+
 # the laws -----------------------------------------------------------------------------------------
 def candidate_laws(solution) -> list[str]:
     """Every other law for this mode: the 2nd law about each constraint point, energy, Lagrange, Kane."""
@@ -240,6 +303,8 @@ def cross_check(solution, laws=None, expect=(), dimensions: bool = True) -> Chec
             other = solve_with(system, law, mode, independent, subs)
         except NotApplicable as exc:
             verdicts.append(Verdict(law, "all", "does not apply", exc.message))
+            if law == "work-energy":
+                verdicts.extend(_power_balance(solution))
             continue
         except RigidkinError as exc:
             verdicts.append(Verdict(law, "all", "error", str(exc)))
@@ -267,11 +332,15 @@ def _regime_pairs(ref, other):
 def _compare_solutions(ref, other, law) -> list[Verdict]:
     out = []
     many = len(ref.regimes) > 1
+    big = len(ref.coordinates) > 2
     for i, (r, o) in enumerate(_regime_pairs(ref, other)):
         tag = f" [regime {i + 1}]" if many else ""
         if o is None:
             out.append(Verdict(law, f"regime {i + 1}", "disagrees", "the law has no regime with these signs: "
                                + r.describe()))
+            continue
+        if big:
+            out.extend(_compare_numerically(ref, r, o, law, tag))
             continue
         for q in ref.coordinates:
             a, b = o.accelerations.get(q), r.accelerations[q]
@@ -288,6 +357,68 @@ def _compare_solutions(ref, other, law) -> list[Verdict]:
     return out
 
 
+def _compare_numerically(ref, r, o, law, tag) -> list[Verdict]:
+    """Accelerations of both laws from their own M q̈ = f, solved numerically at the same random states."""
+    coords = ref.coordinates
+    sampler = Sampler()
+    bad, used = set(), 0
+    for i in range(sampler.n):
+        try:
+            a = sampler.accelerations(r, coords, i)
+            b = sampler.accelerations(o, coords, i)
+        except np.linalg.LinAlgError:
+            continue
+        if not all(np.isfinite(v) for v in list(a.values()) + list(b.values())):
+            continue
+        used += 1
+        for q in coords:
+            k = sp.Symbol(f"_{q.func.__name__}_d2", real=True)
+            if abs(a[k] - b[k]) > RTOL * max(1.0, abs(a[k]), abs(b[k])):
+                bad.add(q)
+    how = (f"numeric: M q̈ = f of each law solved at {used} random states and parameter sets, "
+           f"rel. tol. {RTOL:g}")
+    out = []
+    for k, q in enumerate(coords):
+        ok = used > 0 and q not in bad
+        out.append(Verdict(law, f"{text(q.diff(t, 2))}{tag}", "agrees" if ok else "disagrees", how,
+                           None if ok else _row(o, k), None if ok else _row(r, k)))
+    return out
+
+
+def _row(regime, k):
+    """Row k of M q̈ − f (for showing a disagreement without solving symbolically)."""
+    return regime.eom[k] if k < len(regime.eom) else None
+
+
+def _power_balance(ref) -> list[Verdict]:
+    """dE/dt = Σ P_nc along the reference accelerations and reactions (a check for any number of DOF)."""
+    from .energy import kinetic_energy, nonconservative_power, potential_energy
+
+    setup = ref.setup
+    try:
+        E = kinetic_energy(setup) + potential_energy(setup)
+        P = sum((p.power for p in nonconservative_power(setup)), sp.Integer(0))
+    except RigidkinError as exc:
+        return [Verdict("work-energy", "dE/dt = ΣP_nc", "error", str(exc))]
+    out = []
+    many = len(ref.regimes) > 1
+    for i, r in enumerate(ref.regimes):
+        e = (sp.diff(E, t) - P).xreplace(dict(r.signs))
+        if ref.setup.reactions and e.has(*ref.setup.reactions):
+            react = {sp.Symbol(k, real=True): v for k, v in r.reactions.items()}
+            e = e.xreplace(react).xreplace(dict(r.signs))
+        if len(ref.coordinates) > 2:
+            ok, how = holds_numerically(e, r, ref.coordinates)
+            resid = e
+        else:
+            resid = e.xreplace({q.diff(t, 2): a for q, a in r.accelerations.items()})
+            ok, how = compare(resid, 0)
+        tag = f" [regime {i + 1}]" if many else ""
+        out.append(Verdict("work-energy", f"dE/dt = ΣP_nc{tag}", "agrees" if ok else "disagrees",
+                           "holds with the reference accelerations and reactions; " + how, resid, 0))
+    return out
+
+
 def _reaction_free_rows(ref, other, law) -> list[Verdict]:
     """Each reaction-free 2nd-law equation about P holds with the reference accelerations."""
     from .about_point import reaction_free
@@ -299,11 +430,15 @@ def _reaction_free_rows(ref, other, law) -> list[Verdict]:
     for eq in rows:
         for i, r in enumerate(ref.regimes):
             e = eq.expr.xreplace(dict(r.signs))
-            acc = {q.diff(t, 2): a for q, a in r.accelerations.items()}
-            resid = e.xreplace(acc)
-            ok, how = compare(resid, 0)
+            if len(ref.coordinates) > 2:
+                ok, how = holds_numerically(e, r, ref.coordinates)
+            else:
+                resid = e.xreplace({q.diff(t, 2): a for q, a in r.accelerations.items()})
+                ok, how = compare(resid, 0)
             tag = f" [regime {i + 1}]" if many else ""
-            out.append(Verdict(law, f"{eq.body}: reaction-free 2nd law{tag}", "agrees" if ok else "disagrees",
+            along = eq.label.rsplit("along ", 1)[-1] if "along " in eq.label else ""
+            name = f"{eq.body}: reaction-free 2nd law" + (f" along {along}" if along and not setup.kin.planar else "")
+            out.append(Verdict(law, f"{name}{tag}", "agrees" if ok else "disagrees",
                                "holds with the reference accelerations; " + how, e, 0))
     return out
 

@@ -222,6 +222,23 @@ def energy(system, mode: dict | None = None, substitutions: dict | None = None) 
     return kinetic_energy(setup) + potential_energy(setup)
 
 
+def first_integral(system, mode: dict | None = None, substitutions: dict | None = None) -> sp.Expr:
+    """E = T + U, constant along every motion when no load or reaction does work (any number of DOF)."""
+    setup = setup_mode(system, mode, None, substitutions)
+    working = [p for p in nonconservative_power(setup) if p.power != 0]
+    if working:
+        raise NotApplicable("energy is not a first integral here: "
+                            + "; ".join(f"{p.name} has power {text(p.power)}" for p in working) + ".",
+                            where=system.name, hint="The work–energy law dE/dt = ΣP_nc still holds.")
+    E = kinetic_energy(setup) + potential_energy(setup)
+    if algebra.plain_state(E)[0].has(t):
+        raise NotApplicable("energy depends explicitly on time (a moving support), so it is not conserved.",
+                            where=system.name)
+    setup.trace.add("Answers", "Energy integral", [(sp.Symbol("E"), E)],
+                    "every non-conservative power is zero, so dE/dt = 0: E = T + U is constant.")
+    return E
+
+
 # work–energy law ----------------------------------------------------------------------------------
 def _unknown_reactions(expr, setup) -> list:
     return [r for r in setup.reactions if expr.has(r)]

@@ -50,9 +50,20 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     fr, frstar = KM.kanes_equations(model.bodies, model.loads)
     tr.add("Balance laws", "Kane's equations", [(e, 0) for e in (fr + frstar)],
            "F_r + F_r* = 0 for each independent generalised speed (sympy.physics.mechanics.KanesMethod).")
-    rhs = KM.rhs()
     n = len(qs)
     out = []
+    if not u_dep:
+        # no dependent speed: Kane's equations themselves, M(q) q̈ = f(q, q̇), one per speed
+        from .lagrange import split
+
+        udot = {u.diff(t): q.diff(t, 2) for q, u in zip(qs, us)}
+        accels = [q.diff(t, 2) for q in qs]
+        for q, e in zip(qs, fr + frstar):
+            e = kin.simplify_expr(setup.scalar(sp.sympify(e).xreplace(udot).xreplace(back)))
+            lhs, rhs = split(-e, accels)
+            out.append(BalanceEquation(f"Kane's equation for the speed of {text(q)}", "system", METHOD, lhs, rhs))
+        return out
+    rhs = KM.rhs()
     order = list(KM.u)
     for q, u in zip(qs, us):
         if q not in ind:

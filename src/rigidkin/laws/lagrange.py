@@ -41,9 +41,16 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     eom = LM.form_lagranges_equations()
     tr.add("Balance laws", "Lagrange's equations", [(e, 0) for e in eom],
            "d/dt(∂L/∂q̇) − ∂L/∂q = Q_q + Σ λ a_q for every coordinate (sympy.physics.mechanics.LagrangesMethod).")
-    rhs = LM.rhs()
     n = len(qs)
     out = []
+    if not (model.holonomic or model.nonholonomic):
+        # no constraint relates the rates: the equations themselves, M q̈ = f, one per coordinate
+        for q, e in zip(qs, eom):
+            e = kin.simplify_expr(setup.scalar(e))
+            lhs, rhs = split(e, [c.diff(t, 2) for c in qs])
+            out.append(BalanceEquation(f"Lagrange's equation for {text(q)}", "system", METHOD, lhs, rhs))
+        return out
+    rhs = LM.rhs()
     for q in setup.reduction.independent:
         a = rhs[n + qs.index(q)]
         a = kin.simplify_expr(setup.scalar(a))
@@ -53,3 +60,10 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
                "Lagrange's equations and the differentiated constraints solved for the accelerations and "
                "multipliers, at a state that satisfies the constraints.")
     return out
+
+
+def split(e, accels) -> tuple:
+    """``e = 0`` as (other terms, inertia terms): the terms with an acceleration go to the right side."""
+    e = sp.expand(e)
+    inertia = sp.Add(*[a for a in sp.Add.make_args(e) if a.has(*accels)])
+    return sp.factor_terms(inertia - e), sp.factor_terms(inertia)
