@@ -31,12 +31,14 @@ def test_phase_portrait_marks_the_event_where_the_card_says(ladder_run):
     assert np.cos(opens[0].state["theta"]) == pytest.approx(2 / 3 * np.cos(0.3), abs=1e-8)
     fig = phase_portrait(res)
     ax = fig.axes[0]
-    (marker,) = [ln for ln in ax.lines if ln.get_marker() == "D"]
+    markers = [ln for ln in ax.lines if ln.get_marker() == "D"]      # one per event (then the top hits the floor)
+    assert len(markers) == len(res.events)
+    marker = markers[0]
     assert marker.get_xdata()[0] == pytest.approx(opens[0].state["theta"])
     assert marker.get_ydata()[0] == pytest.approx(opens[0].state["dot(theta)"])
     # the curves are the histories, one line per mode
     curves = [ln for ln in ax.lines if ln.get_marker() in ("None", "", None)]
-    assert len(curves) == len(res.segments) == 2
+    assert len(curves) == len(res.segments) == 3      # against the wall, free of it, lying on the floor
     assert np.concatenate([c.get_xdata() for c in curves]) == pytest.approx(res["theta"])
 
 

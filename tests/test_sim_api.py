@@ -74,7 +74,7 @@ def test_bad_parameters_and_states_are_clear_errors(ladder):
 def test_initial_rates_that_separate_a_contact_start_it_open(ladder):
     # the foot pushed away from the wall faster than the rod turns: the top leaves the wall at once
     r = simulate(ladder, 0.5, initial_state={"theta": 0.3, "dot(x)": 0.5})
-    assert r.segments[0].mode == {"A": "open", "B": "slip"}
+    assert r.segments[0].mode == {"A": "open", "B": "slip", "A_floor": "open"}
     # pushing the foot towards the wall would drive the top into it
     with pytest.raises(InputError, match="violates the constraints"):
         simulate(ladder, 0.5, initial_state={"theta": 0.3, "dot(x)": -0.5})

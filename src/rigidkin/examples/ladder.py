@@ -2,7 +2,8 @@
 
 θ is the angle between the rod and the wall; x is the distance of the foot B from the wall.  While
 the rod touches the wall, x = l sin θ (the wall contact is a constraint), so the system has one
-degree of freedom; when the wall reaction reaches zero the contact opens and x becomes free.
+degree of freedom; when the wall reaction reaches zero the contact opens and x becomes free.  The floor
+also waits under the upper end A (a contact that is open until A comes down onto it).
 """
 
 import rigidkin as rk
@@ -31,5 +32,7 @@ def build() -> rk.System:
               description="wall: pushes along +Ex")
     s.contact("B", rod, s.line(s.origin, F.y, name="floor"), centre=B, normal_name="N_B",
               description="floor: pushes along +Ey")
+    s.contact("A_floor", rod, s.line(s.origin, F.y, name="floor"), centre=A, normal_name="N_Af",
+              description="the floor under the upper end A: open until A comes down onto it")
     s.gravity(g)
     return s

@@ -172,11 +172,24 @@ class Contact(Constraint):
         return [self.N] if self.friction == SMOOTH else [self.N, self.F]
 
     def default_state(self, kin):
+        if self.unilateral and self._apart_at_reference(kin):
+            return "open"
         if self.friction == ROLLING:
             return "stick"
         if isinstance(self.friction, Coulomb) and kin.is_zero(self.slip_velocity(kin)):
             return "stick"
         return "slip"
+
+    def _apart_at_reference(self, kin) -> bool:
+        """True when the gap is clearly positive in the reference configuration (declared initial values)."""
+        gap = self.gap(kin)
+        if gap == 0 or not gap.free_symbols:
+            return bool(gap.is_positive)
+        try:
+            val = complex(gap.xreplace({k: sp.Float(v) for k, v in kin.reference_values().items()}).evalf())
+        except (TypeError, ValueError):
+            return False
+        return abs(val.imag) < 1e-12 and val.real > 1e-9
 
     # geometry ---------------------------------------------------------------------------------
     def normal(self, kin) -> Vector:

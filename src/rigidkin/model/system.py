@@ -76,15 +76,16 @@ class System:
         self._names["point:O"] = "the fixed origin O"
 
     # names ---------------------------------------------------------------------------------------
-    def _claim(self, name: str, kind: str, namespace: str = "symbol") -> None:
+    def _claim(self, name: str, kind: str, namespace: str = "symbol", owner: str | None = None) -> None:
         if not isinstance(name, str) or not name.isidentifier() or name.startswith("_"):
             raise ModelError(f"'{name}' is not a valid name for a {kind}: use letters, digits and "
                              "underscores, starting with a letter.", where=f"{kind} {name}")
         key = f"{namespace}:{name}"
         if key in self._names:
-            raise ModelError(f"the name '{name}' is already used by {self._names[key]}.", where=f"{kind} {name}",
-                             hint="Give each object a name of its own.")
-        self._names[key] = f"{kind} {name}"
+            of = f" of {owner}" if owner else ""
+            raise ModelError(f"the name '{name}'{of} is already used by {self._names[key]}.",
+                             where=owner or f"{kind} {name}", hint="Give each object a name of its own.")
+        self._names[key] = owner or f"{kind} {name}"
         self._cache.clear()
 
     # parameters and coordinates ---------------------------------------------------------------
@@ -314,7 +315,7 @@ class System:
         con = C.Pin(name, point=p, body_a=a, body_b=b, point_b=pb, basis_frame=basis, axis=axis, prefix=prefix,
                     description=description)
         for sym in con.reactions():
-            self._claim(sym.name, "reaction")
+            self._claim(sym.name, "reaction", owner=f"pin {name}")
         return self._add_constraint(con)
 
     def contact(self, name: str, body, surface, centre: Point | str | None = None, radius=0,
@@ -336,7 +337,7 @@ class System:
                         unilateral=unilateral, normal_name=normal_name, friction_name=friction_name,
                         description=description)
         for sym in con.reactions():
-            self._claim(sym.name, "reaction")
+            self._claim(sym.name, "reaction", owner=f"contact {name}")
         return self._add_constraint(con)
 
     def disk_contact(self, name: str, body, surface, axis: Vector, radius, centre: Point | str | None = None,
@@ -355,7 +356,7 @@ class System:
                           friction_name=friction_name, description=description,
                           axis=self._check_vector(axis, where))
         for sym in con.reactions():
-            self._claim(sym.name, "reaction")
+            self._claim(sym.name, "reaction", owner=f"contact {name}")
         return self._add_constraint(con)
 
     def collar(self, name: str, body, along: Vector, through: Point | str | None = None,
@@ -371,7 +372,7 @@ class System:
                        track_body=self._check_body(track_body, where, True), friction=_friction(friction, where),
                        normal_name=normal_name, couple_name=couple_name, description=description)
         for sym in con.reactions():
-            self._claim(sym.name, "reaction")
+            self._claim(sym.name, "reaction", owner=f"collar {name}")
         return self._add_constraint(con)
 
     def cable(self, name: str, points, length, bodies=None, tension_name: str | None = None,
@@ -394,7 +395,7 @@ class System:
             bs = tuple(self._check_body(b, where, allow_none=True) for b in bodies)
         con = C.Cable(name, points=pts, bodies=bs, length=sp.sympify(length), tension_name=tension_name,
                       description=description)
-        self._claim(con.T.name, "reaction")
+        self._claim(con.T.name, "reaction", owner=f"cable {name}")
         return self._add_constraint(con)
 
     # loads -------------------------------------------------------------------------------------

@@ -122,7 +122,18 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
         y = np.zeros(2 * n)
         for i, v in given.items():
             y[i] = v
-        rel_slots, rel_fn, rate_slots, rate_fn = hyb.relation_functions(cand, integrated=True)
+        try:
+            rel_slots, rel_fn, rate_slots, rate_fn = hyb.relation_functions(cand, integrated=True)
+        except ModeUnavailable:
+            # the candidate mode cannot be derived (too many closed contacts): open the unilateral
+            # contacts the given configuration already separates, then try again
+            apart = [nm for nm, c in hyb.contacts.items() if cand[nm] != OPEN and c.unilateral
+                     and hyb.contact_state(nm, t0, y, p)[0] > 1e-9 * max(1.0, float(np.max(np.abs(y))))]
+            if not apart:
+                raise
+            for nm in apart:
+                cand[nm] = OPEN
+            continue
         for s, v in zip(rel_slots, rel_fn(t0, *y, *p) if rel_slots else ()):
             if s not in given:
                 y[s] = float(v)
