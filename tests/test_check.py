@@ -97,3 +97,12 @@ def test_expectation_in_a_regime():
     assert e.equivalent and e.regime is not None
     rep = cross_check(s.solve(), laws=["kane"])
     assert rep.ok and len([v for v in rep.verdicts if v.equation.startswith(text(x.diff(t, 2)))]) == 2
+
+
+def test_check_is_recorded_in_the_trace_once():
+    sol = build("rod-impulse").solve()
+    sol.check()
+    sol.check()
+    titles = [st.title for st in sol.trace.section("Checks")]
+    assert titles.count("Cross-check: kane") == 1 and "Dimensions" in titles
+    assert "agrees" in next(st for st in sol.trace.section("Checks") if st.title == "Cross-check: lagrange").why

@@ -318,7 +318,30 @@ def cross_check(solution, laws=None, expect=(), dimensions: bool = True) -> Chec
 
         dims = tuple(check_solution(solution))
     exps = tuple(expectation(solution, e) for e in expect)
-    return CheckReport(system.name, solution.method, tuple(verdicts), dims, exps, time.time() - t0)
+    report = CheckReport(system.name, solution.method, tuple(verdicts), dims, exps, time.time() - t0)
+    _record(solution, report)
+    return report
+
+
+def _record(solution, report: CheckReport) -> None:
+    """The cross-check in the solution's trace (section "Checks"), once per law."""
+    tr = solution.trace
+    seen = {st.title for st in tr.steps if st.section == "Checks"}
+    by_law: dict = {}
+    for v in report.verdicts:
+        by_law.setdefault(v.law, []).append(v)
+    for law, vs in by_law.items():
+        title = f"Cross-check: {law}"
+        if title in seen:
+            continue
+        statuses = {v.status for v in vs}
+        summary = ("does not apply: " + vs[0].how if statuses == {"does not apply"} else
+                   "; ".join(f"{v.equation}: {v.status} ({v.how})" for v in vs if v.status != "does not apply"))
+        tr.add("Checks", title, [(v.ours, v.reference) for v in vs if v.status == "disagrees"], summary)
+    if report.dimensions and "Dimensions" not in seen:
+        wrong = [d for d in report.dimensions if not d.consistent]
+        tr.add("Checks", "Dimensions", [], f"{len(report.dimensions) - len(wrong)} of {len(report.dimensions)} "
+               "equations dimensionally consistent" + ("" if not wrong else ": " + "; ".join(map(str, wrong))) + ".")
 
 
 def _regime_pairs(ref, other):

@@ -16,6 +16,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..mode import ModeSetup
 from ..printing import text
+from . import NotApplicable
 from .mechanics_model import build
 from .newton_euler import BalanceEquation
 
@@ -24,12 +25,28 @@ t = dynamicsymbols._t
 METHOD = "kane"
 
 
+def _auxiliary(setup: ModeSetup, model) -> list:
+    """(auxiliary speed, reaction): each reaction in evidence gets a speed of its body along the reaction."""
+    out = []
+    N = model.frame
+    for r, row in model.evidence:
+        app = row.applications[0]
+        direction = app.vector / r
+        ua = dynamicsymbols(f"ua_{r.name}")
+        for p, body in model.points:
+            if body is app.body:
+                p.set_vel(N, p.vel(N) + ua * direction)
+        out.append((ua, r))
+    return out
+
+
 def equations(setup: ModeSetup) -> list[BalanceEquation]:
     """q̇_i = u_i, and u̇_i from Kane's equations F_r + F_r* = 0 for the independent speeds."""
     kin, tr = setup.kin, setup.trace
-    model = build(setup, "forces", METHOD)
+    model = build(setup, "forces", METHOD, evidence=True)
     qs = list(setup.system.coordinates)
     us = [dynamicsymbols(f"u_{q.func.__name__}") for q in qs]
+    aux = _auxiliary(setup, model)
     to_u = {q.diff(t): u for q, u in zip(qs, us)}
     back = {u: q.diff(t) for q, u in zip(qs, us)}
     ind = set(setup.reduction.independent)
@@ -45,11 +62,26 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     if vc:
         tr.add("Balance laws", "Velocity constraints", [(v, 0) for v in vc],
                "handed to KanesMethod, which eliminates the dependent speeds.")
+    if aux and u_dep:
+        raise NotApplicable("a load depends on a reaction and the mode has dependent speeds; bringing the reaction "
+                            "into evidence is not supported together with velocity constraints here.",
+                            where=setup.system.name, hint="Euler's laws (newton-euler) handle it.")
     KM = KanesMethod(model.frame, q_ind=qs, u_ind=u_ind, kd_eqs=kd, u_dependent=u_dep or None,
-                     velocity_constraints=vc or None)
+                     velocity_constraints=vc or None, u_auxiliary=[ua for ua, _ in aux] or None)
     fr, frstar = KM.kanes_equations(model.bodies, model.loads)
     tr.add("Balance laws", "Kane's equations", [(e, 0) for e in (fr + frstar)],
            "F_r + F_r* = 0 for each independent generalised speed (sympy.physics.mechanics.KanesMethod).")
+    solved_r = {}
+    if aux:
+        eqs = [sp.sympify(e) for e in KM.auxiliary_eqs]
+        tr.add("Balance laws", "Auxiliary equations", [(e, 0) for e in eqs],
+               "an auxiliary speed along each reaction that a load depends on ("
+               + ", ".join(str(r) for _, r in aux) + "): its F_r + F_r* = 0 brings the reaction into evidence.")
+        sol = sp.solve(eqs, [r for _, r in aux], dict=True)
+        if len(sol) != 1:
+            raise NotApplicable("the auxiliary equations do not determine the reactions in evidence.",
+                                where=setup.system.name)
+        solved_r = sol[0]
     n = len(qs)
     out = []
     if not u_dep:
@@ -59,7 +91,8 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
         udot = {u.diff(t): q.diff(t, 2) for q, u in zip(qs, us)}
         accels = [q.diff(t, 2) for q in qs]
         for q, e in zip(qs, fr + frstar):
-            e = kin.simplify_expr(setup.scalar(sp.sympify(e).xreplace(udot).xreplace(back)))
+            e = sp.sympify(e).xreplace(solved_r)
+            e = kin.simplify_expr(setup.scalar(e.xreplace(udot).xreplace(back)))
             lhs, rhs = split(-e, accels)
             out.append(BalanceEquation(f"Kane's equation for the speed of {text(q)}", "system", METHOD, lhs, rhs))
         return out

@@ -33,23 +33,31 @@ class MechanicsModel:
     holonomic: list = field(default_factory=list)      # gaps f(q, t) = 0
     nonholonomic: list = field(default_factory=list)   # velocity rows, linear in q̇
     rows: list = field(default_factory=list)           # the relating rows (any form), for Kane
-    notes: list = field(default_factory=list)
+    evidence: list = field(default_factory=list)       # reactions a load depends on (brought into evidence)
+    points: list = field(default_factory=list)         # (mechanics Point, rigidkin body) of every point made
 
 
-def build(setup: ModeSetup, conservative: str = "potential", method: str = "lagrange") -> MechanicsModel:
-    """The mechanics objects of ``setup``; ``conservative`` = "potential" (in U) or "forces" (as loads)."""
+def build(setup: ModeSetup, conservative: str = "potential", method: str = "lagrange",
+          evidence: bool = False) -> MechanicsModel:
+    """The mechanics objects of ``setup``; ``conservative`` = "potential" (in U) or "forces" (as loads).
+
+    A load that depends on a reaction (Coulomb friction set by a normal force) makes the method not
+    applicable, unless ``evidence``: then the reaction is listed in ``evidence`` and its forces (every
+    application of its row) are added to the loads, for an auxiliary speed to bring it into evidence.
+    """
     kin = setup.kin
     N = kin.F.ref
     reactions = set(setup.reactions)
-    bodies = []
+    bodies, points = [], []
     for b in setup.system.bodies.values():
         if b.is_massless:
             continue
         mc = Point(f"{b.centre.name}_{b.name}")
         mc.set_vel(N, kin.position(b.centre).dt(N))
+        points.append((mc, b))
         bodies.append(RigidBody(b.name, mc, b.frame.ref, b.mass, (b.inertia, mc)))
     load_of = {ld.name: ld for ld in setup.loads}
-    loads, U = [], sp.Integer(0)
+    loads, U, wanted = [], sp.Integer(0), []
     for ld in setup.loads:
         if conservative == "potential" and getattr(ld, "conservative", False):
             pot = ld.potential(kin)
@@ -63,7 +71,9 @@ def build(setup: ModeSetup, conservative: str = "potential", method: str = "lagr
                 and ld.potential(kin) is not None:
             continue
         used = [r for r in reactions if _vector_has(app.vector, r)]
-        if used:
+        if used and evidence:
+            wanted.extend(r for r in used if r not in wanted)
+        elif used:
             raise NotApplicable(f"the {app.label} depends on the reaction(s) {', '.join(map(str, used))}, which "
                                 f"{method} eliminates (Coulomb friction set by a normal force).",
                                 where=setup.system.name, hint="Euler's laws (newton-euler) handle it.")
@@ -73,8 +83,22 @@ def build(setup: ModeSetup, conservative: str = "potential", method: str = "lagr
             loc = app.location if app.location is not None else kin.position(app.point)
             p = Point(f"load{i}")
             p.set_vel(N, kin.material_velocity(app.body, loc))
+            points.append((p, app.body))
             loads.append((p, app.vector))
-    model = MechanicsModel(N, bodies, loads, U)
+    for row in setup.rows:
+        if row.reaction not in wanted:
+            continue
+        for k, app in enumerate(row.applications):
+            if app.is_torque:
+                raise NotApplicable(f"the reaction couple {row.reaction} cannot be brought into evidence here.",
+                                    where=setup.system.name, hint="Euler's laws (newton-euler) handle it.")
+            loc = app.location if app.location is not None else kin.position(app.point)
+            p = Point(f"{row.reaction}_{k}")
+            p.set_vel(N, kin.material_velocity(app.body, loc))
+            points.append((p, app.body))
+            loads.append((p, app.vector))
+    model = MechanicsModel(N, bodies, loads, U, points=points)
+    model.evidence = [(r, next(row for row in setup.rows if row.reaction == r)) for r in wanted]
     for row in setup.rows:
         v = kin.simplify_expr(row.velocity)
         if kin.is_zero(v):
