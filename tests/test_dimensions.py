@@ -71,3 +71,23 @@ def test_other_laws_equations_are_consistent(method):
     sol = build("disk-in-track").solve(method=method)
     reports = check_solution(sol)
     assert all(r.consistent for r in reports), [str(r) for r in reports if not r.consistent]
+
+
+def test_answers_of_the_impulse_and_energy_laws_have_the_right_dimensions():
+    from rigidkin.laws import energy, impulse
+
+    s = build("rod-impulse")
+    th = s.coordinates[0]
+    dims = symbol_dimensions(s)
+    w = impulse.impulsive(s).rate(th)
+    assert dimension_of(w, dims) == ONE / TIME                      # ω′ = 6 F̂/(m l)
+    theta_max = energy.energy_balance(s, {th: 0, th.diff(t): w}, {th.diff(t): 0}, th)[th]
+    assert dimension_of(theta_max, dims) == ONE                     # an angle
+    s = build("slip-to-roll")
+    x, phi = s.coordinates
+    dims = symbol_dimensions(s)
+    vB = sp.sqrt(2 * s.parameters["g"] * s.parameters["d"] * sin(s.parameters["beta"]))
+    res = impulse.interval(s, {x.diff(t): vB, phi.diff(t): 0}, until="ground")
+    assert dimension_of(res.duration, dims) == TIME
+    assert dimension_of(res.rate(x), dims) == LENGTH / TIME
+    assert dimension_of(res.rate(phi), dims) == ONE / TIME

@@ -50,7 +50,11 @@ def _v(setup: ModeSetup, v: Vector) -> Vector:
     """A vector for the trace: in the independent coordinates, each component simplified."""
     if v == Vector(0):
         return v
-    return Vector([(m.applyfunc(lambda e: setup.kin.simplify_expr(setup.scalar(e))), fr) for m, fr in v.args])
+    def tidy(e):
+        e = setup.scalar(e)
+        return setup.kin.simplify_expr(e) if sp.count_ops(e) <= 60 else e
+
+    return Vector([(m.applyfunc(tidy), fr) for m, fr in v.args])
 
 
 def pole(setup: ModeSetup, name: str) -> Pole:
