@@ -672,7 +672,7 @@ def fast_rhs(system, mode: Mapping | None = None, regime: int = 0, params: Mappi
     >>> from rigidkin import examples
     >>> from rigidkin.numeric.codegen import fast_rhs
     >>> f = fast_rhs(examples.build("ladder"))
-    >>> [round(v, 6) for v in f(0.0, [0.5, 1.0, 0.0, 0.0])]    # θ, x, θ̇, ẋ
+    >>> [round(float(v), 6) for v in f(0.0, [0.5, 1.0, 0.0, 0.0])]    # θ, x, θ̇, ẋ
     [0.0, 0.0, 3.527373, 6.191123]
     """
     model = compile_model(system, mode, regime, form, backend)
