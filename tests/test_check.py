@@ -85,7 +85,19 @@ def test_expectation_equivalent_and_wrong():
     assert any(a is not None and a.has(th.diff(t, 2)) for a, _ in e.differences)
     assert e.dimensions.consistent
     no_accel = expectation(sol, m * g)
-    assert not no_accel.equivalent and "no acceleration" in no_accel.how
+    assert not no_accel.equivalent and "neither an acceleration" in no_accel.how
+
+
+def test_expected_reaction():
+    s = build("rod-impulse")            # the pin at the mass centre carries the weight, nothing else
+    m, g = s.parameters["m"], s.parameters["g"]
+    sol = s.solve()
+    Ry, Rx = sp.Symbol("R_Oy", real=True), sp.Symbol("R_Ox", real=True)
+    assert expectation(sol, sp.Eq(Ry, m * g)).equivalent
+    assert expectation(sol, Rx).equivalent
+    wrong = expectation(sol, sp.Eq(Ry, 2 * m * g))
+    assert not wrong.equivalent and "reactions" in wrong.how
+    assert sp.simplify(wrong.residual + m * g) == 0 or sp.simplify(wrong.residual - m * g) == 0
 
 
 def test_expectation_in_a_regime():

@@ -501,23 +501,27 @@ def expectation(solution, given, label: str | None = None) -> Expectation:
     dims = check_equation(lhs, rhs, symbol_dimensions(solution.system, setup), "expected equation")
     e = setup.scalar(lhs - rhs)
     accels = [q.diff(t, 2) for q in solution.coordinates]
-    if not e.has(*accels):
-        return Expectation(e, shown, False, "it contains no acceleration of the independent coordinates "
-                           + ", ".join(text(q) for q in solution.coordinates), dimensions=dims)
+    reacts = [r for r in setup.reactions if e.has(r)]
+    if not e.has(*accels) and not reacts:
+        return Expectation(e, shown, False, "it contains neither an acceleration of the independent coordinates "
+                           + ", ".join(text(q) for q in solution.coordinates) + " nor a reaction", dimensions=dims)
     best = None
     for i, r in enumerate(solution.regimes):
-        acc = {q.diff(t, 2): a for q, a in r.accelerations.items()}
-        resid = e.xreplace(dict(r.signs)).xreplace(acc)
+        resid = e.xreplace(dict(r.signs))
+        if reacts:
+            resid = resid.xreplace({sym: r.reactions[str(sym)] for sym in reacts}).xreplace(dict(r.signs))
+        resid = resid.xreplace({q.diff(t, 2): a for q, a in r.accelerations.items()})
         ok, how = compare(resid, 0)
+        what = "accelerations and reactions" if reacts else "accelerations"
         if ok:
-            return Expectation(e, shown, True, "it holds for every state with the derived accelerations; " + how,
+            return Expectation(e, shown, True, f"it holds for every state with the derived {what}; " + how,
                                i if len(solution.regimes) > 1 else None, dimensions=dims)
         if best is None:
-            best = (i, r, resid)
-    i, r, resid = best
-    diffs, derived = _term_differences(e.xreplace(dict(r.signs)), r, solution)
+            best = (i, r, resid, what)
+    i, r, resid, what = best
+    diffs, derived = _term_differences(e.xreplace(dict(r.signs)), r, solution) if not reacts else ([], None)
     resid = solution.setup.kin.simplify_expr(resid) if sp.count_ops(resid) < 200 else resid
-    return Expectation(e, shown, False, "it does not hold with the derived accelerations",
+    return Expectation(e, shown, False, f"it does not hold with the derived {what}",
                        i if len(solution.regimes) > 1 else None, tuple(diffs), resid, dims, derived)
 
 
