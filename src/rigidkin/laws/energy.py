@@ -249,9 +249,9 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     red, kin, tr = setup.reduction, setup.kin, setup.trace
     if len(red.independent) != 1:
         raise NotApplicable(f"the work–energy law is one scalar equation, but this mode has {len(red.independent)} "
-                         "degrees of freedom, so it cannot give all the equations of motion.",
-                         where=setup.system.name, hint="Use newton-euler, lagrange or kane; energy is still a "
-                                                      "check (rigidkin check).")
+                            "degrees of freedom, so it cannot give all the equations of motion.",
+                            where=setup.system.name, hint="Use newton-euler, lagrange or kane; energy is still a "
+                                                         "check (rigidkin check).")
     (q,) = red.independent
     u = q.diff(t)
     T, U = kinetic_energy(setup), potential_energy(setup)
@@ -261,8 +261,8 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     if bad:
         names = ", ".join(p.name for p in powers if _unknown_reactions(p.power, setup))
         raise NotApplicable(f"the power of {names} involves the reaction(s) {', '.join(map(str, bad))}, which the "
-                         "work–energy law alone does not determine.", where=setup.system.name,
-                         hint="Use Euler's laws (newton-euler) for this mode.")
+                            "work–energy law alone does not determine.", where=setup.system.name,
+                            hint="Use Euler's laws (newton-euler) for this mode.")
     E = T + U
     dE = sp.diff(E, t)
     tr.add("Balance laws", "Mechanical energy", [(sp.Symbol("E"), E)], "E = T + U.")
@@ -277,12 +277,12 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
         raise NotApplicable("the energy balance does not involve the rate of the coordinate.", where=setup.system.name)
     if not algebra.is_zero(plain.xreplace({s: 0})):
         raise NotApplicable("the energy balance has terms that do not vanish with q̇ (a moving surface or a "
-                         "time-dependent constraint does work), so it is not q̇ times the equation of motion.",
-                         where=setup.system.name, hint="Use newton-euler for a rheonomic system.")
+                            "time-dependent constraint does work), so it is not q̇ times the equation of motion.",
+                            where=setup.system.name, hint="Use newton-euler for a rheonomic system.")
     row = sp.cancel(sp.expand(plain) / s)
     if sp.denom(sp.together(row)).has(s):
         raise NotApplicable("the energy balance is not q̇ times an equation of motion (its power is not "
-                         "proportional to q̇).", where=setup.system.name)
+                            "proportional to q̇).", where=setup.system.name)
     row = sp.expand(row.xreplace(back))
     acc = q.diff(t, 2)
     c = row.coeff(acc)
@@ -290,7 +290,7 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
         raise NotApplicable("the energy balance does not involve the acceleration.", where=setup.system.name)
     lhs, rhs = -(row - c * acc), kin.simplify_expr(c) * acc
     eq = BalanceEquation(f"work–energy: dE/dt = ΣP_nc, divided by {text(u)}", "system", METHOD,
-                         kin.simplify_expr(lhs), rhs)
+                            kin.simplify_expr(lhs), rhs)
     tr.add("Balance laws", "Equation of motion from the work–energy law", [(eq.lhs, eq.rhs)],
            f"dE/dt − ΣP_nc = {text(u)}·(equation of motion) for one degree of freedom; divided by {text(u)}.")
     return [eq]
