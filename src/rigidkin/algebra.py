@@ -237,9 +237,8 @@ def leading_sign(expr: sp.Basic, unknowns: Iterable[sp.Basic], values: Mapping |
     The coefficient's sign is read at ``values`` (parameter values) when it is not a plain number,
     so that 3(r − R) θ̈ with R > r reads as 3(R − r) θ̈.
     """
-    expr = sp.expand(expr)
     for u in unknowns:
-        c = expr.coeff(u)
+        c = sp.diff(expr, u) if expr.has(u) else sp.Integer(0)
         if c == 0:
             continue
         if values:

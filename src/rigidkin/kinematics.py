@@ -226,13 +226,21 @@ def _numeric_matrix(M: sp.Matrix, rng: random.Random) -> np.ndarray:
 
 
 def linear_form(exprs, unknowns):
-    """(A, b) with exprs = A·unknowns + b, for expressions linear in ``unknowns`` (Derivatives allowed)."""
+    """(A, b) with exprs = A·unknowns + b, for expressions linear in ``unknowns`` (Derivatives allowed).
+
+    Each expression is differentiated only by the unknowns it contains, and the matrix is built once
+    (sympy's Matrix.jacobian spends most of its time creating matrices and zero derivatives).
+    """
     dummies = [sp.Dummy(f"u{i}") for i in range(len(unknowns))]
     fwd = dict(zip(unknowns, dummies))
-    E = sp.Matrix([sp.sympify(e).xreplace(fwd) for e in exprs])
-    A = E.jacobian(dummies)
-    b = E.xreplace(dict.fromkeys(dummies, 0))
-    return A, b
+    zero = dict.fromkeys(dummies, 0)
+    rows, rest = [], []
+    for e in exprs:
+        e = sp.sympify(e).xreplace(fwd)
+        present = e.free_symbols
+        rows.append([e.diff(d) if d in present else sp.Integer(0) for d in dummies])
+        rest.append(e.xreplace(zero))
+    return sp.Matrix(len(rows), len(dummies), [c for r in rows for c in r]), sp.Matrix(rest)
 
 
 def solve_square(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, seed: int = 7) -> sp.Matrix:

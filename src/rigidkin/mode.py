@@ -17,7 +17,7 @@ from .errors import ModelError
 from .kinematics import Kinematics, Reduction, reduce_constraints
 from .model.loads import Application, SignChoice
 from .printing import text
-from .trace import Trace
+from .trace import LazyEquations, Trace
 
 
 @dataclass
@@ -136,15 +136,15 @@ def _trace_frames(system, kin, trace: Trace) -> None:
 def _trace_kinematics(setup: ModeSetup) -> None:
     system, kin, red, tr = setup.system, setup.kin, setup.reduction, setup.trace
     for b in system.bodies.values():
-        w = red.reduce(kin.omega_of(b))
-        tr.add("Kinematics", f"Angular velocity of {b.name}", [(sp.Symbol(f"ω_{b.name}"), w)],
+        tr.add("Kinematics", f"Angular velocity of {b.name}",
+               LazyEquations(lambda b=b: [(sp.Symbol(f"ω_{b.name}"), red.reduce(kin.omega_of(b)))]),
                f"{b.frame.name} turns with {b.name}; the angular velocity adds up along the chain of frames.")
     for b in system.bodies.values():
         G = b.centre
-        r = kin.position(G)
         tr.add("Kinematics", f"Mass centre {G.name} of {b.name}",
-               [(sp.Symbol(f"r_{G.name}"), r), (sp.Symbol(f"v_{G.name}"), red.reduce(kin.velocity(G))),
-                (sp.Symbol(f"a_{G.name}"), red.reduce(kin.acceleration(G)))],
+               LazyEquations(lambda G=G: [(sp.Symbol(f"r_{G.name}"), kin.position(G)),
+                                          (sp.Symbol(f"v_{G.name}"), red.reduce(kin.velocity(G))),
+                                          (sp.Symbol(f"a_{G.name}"), red.reduce(kin.acceleration(G)))]),
                "velocity and acceleration by the transport theorem, F d/dt r = B d/dt r + ω × r.")
     for note in kin.assumptions:
         tr.add("Kinematics", "Assumption", [], note)

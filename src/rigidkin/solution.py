@@ -211,9 +211,20 @@ def _numeric(M: sp.Matrix, seed: int) -> np.ndarray:
     return np.array(plain.xreplace(vals).evalf(), dtype=complex)
 
 
+def _numeric_fast(M: sp.Matrix, seed: int) -> np.ndarray:
+    """Like ``_numeric`` but through lambdify (machine floats): for large coefficient matrices."""
+    plain, _ = algebra.plain_state(M)
+    syms = sorted(plain.free_symbols - {t}, key=str)
+    rng = random.Random(seed)
+    vals = algebra.random_point(syms, rng)
+    f = sp.lambdify([t] + syms, plain, "numpy")
+    with np.errstate(all="ignore"):
+        return np.array(f(0.41, *[float(vals[s]) for s in syms]), dtype=complex)
+
+
 def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "") -> list[int]:
     """Check the linear system; return the indices of a square, nonsingular set of rows."""
-    Ab = _numeric(A.row_join(b), 5)
+    Ab = _numeric_fast(A.row_join(b), 5)
     nA, nb = Ab[:, :-1], Ab[:, -1:]
     scale = max(1.0, float(np.abs(nA).max()))
     rank = np.linalg.matrix_rank(nA, tol=1e-9 * scale)
@@ -297,12 +308,12 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
         react = {str(r): solved[r] for r in reactions}
         for r in missing:
             react[str(r)] = sp.Integer(0)
-        eom, M, f = _rows_to_eom(setup, raw_rows, reactions, solved)
+        eom, M, f = _rows_to_eom(setup, raw_rows, reactions, solved, working)
         _check_consistency(M, f, accels, red.independent)
         accel_map, react_map = MappingProxyType(accels), MappingProxyType(react)
         how = "all unknowns from the scalar equations at once."
     else:
-        eom, M, f = _rows_to_eom(setup, raw_rows, reactions, {})
+        eom, M, f = _rows_to_eom(setup, raw_rows, reactions, {}, working)
 
         def accelerations():
             return dict(zip(red.independent, solve_square(M, f, simplify=kin.simplify_expr)))
@@ -357,31 +368,55 @@ def _projected_rows(setup, balances, sign_map):
 
 
 def _working_reactions(rows, reactions) -> list:
-    """The reactions that remain in the projected rows (they do work: e.g. N under sliding friction)."""
+    """The reactions that remain in the projected rows (they do work: e.g. N under sliding friction).
+
+    The rows are linear in the reactions: each coefficient is read numerically as the change of the
+    rows when that reaction goes from 0 to 1 (one lambdified function, two random states).
+    """
     if not reactions or not rows:
         return []
-    C, _ = linear_form(rows, reactions)
-    num = np.abs(_numeric(C, 3)) + np.abs(_numeric(C, 4))
-    scale = max(1.0, float(num.max()))
-    return [r for j, r in enumerate(reactions) if num[:, j].max() > 1e-9 * scale]
+    plain, _ = algebra.plain_state(sp.Matrix(rows))
+    others = sorted(plain.free_symbols - {t} - set(reactions), key=str)
+    f = sp.lambdify([t] + others + list(reactions), plain, "numpy")
+    found = np.zeros(len(reactions))
+    for seed in (3, 4):
+        vals = algebra.random_point(others, random.Random(seed))
+        args = [0.41] + [float(vals[s]) for s in others]
+        with np.errstate(all="ignore"):
+            base = np.array(f(*args, *([0.0] * len(reactions))), dtype=complex).ravel()
+            for j in range(len(reactions)):
+                unit = [0.0] * len(reactions)
+                unit[j] = 1.0
+                d = np.array(f(*args, *unit), dtype=complex).ravel() - base
+                found[j] = max(found[j], float(np.abs(d).max()))
+    scale = max(1.0, float(found.max()))
+    return [r for j, r in enumerate(reactions) if found[j] > 1e-9 * scale]
 
 
-def _rows_to_eom(setup, raw_rows, reactions, solved):
+#: Above this many degrees of freedom the mass matrix, forcing and equations of motion are left as
+#: derived (no simplification for reading: nobody reads an 8 × 8 mass matrix, and code generation
+#: does its own common-subexpression elimination).
+READABLE_DOF = 4
+
+
+def _rows_to_eom(setup, raw_rows, reactions, solved, working):
     """Workless reactions dropped, working ones replaced by their solved values; M, f and readable rows."""
     kin, red = setup.kin, setup.reduction
     accels = [q.diff(t, 2) for q in red.independent]
-    working = set(_working_reactions(raw_rows, reactions))
+    working = set(working)
     subs = {r: (solved[r] if r in working else sp.Integer(0)) for r in reactions}
     rows = [row.xreplace(subs) for row in raw_rows]
     A, b = linear_form(rows, accels)
-    M = A.applyfunc(kin.simplify_expr)
-    f = (-b).applyfunc(kin.simplify_expr)
+    small = len(accels) <= READABLE_DOF
+    M = A.applyfunc(kin.simplify_expr) if small else A
+    f = (-b).applyfunc(kin.simplify_expr) if small else -b
     ref = {k: v for k, v in kin.reference_values().items() if isinstance(k, sp.Symbol)}
     eom = []
     for i in range(len(rows)):
         e = sum((M[i, j] * accels[j] for j in range(len(accels))), sp.Integer(0)) - f[i]
-        e = algebra.strip_factors(e)
-        e = sp.collect(sp.expand(e), accels, func=sp.factor_terms) if sp.count_ops(e) < 200 else e
+        e = algebra.strip_factors(e) if small else e
+        if len(accels) <= 4 and sp.count_ops(e) < 200:
+            e = sp.collect(sp.expand(e), accels, func=sp.factor_terms)
         e = algebra.leading_sign(e, accels, ref) * e
         eom.append(e)
     return eom, M, f

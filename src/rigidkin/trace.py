@@ -8,6 +8,7 @@ derivation text of their own.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 SECTIONS = (
@@ -20,6 +21,29 @@ SECTIONS = (
     "Answers",
     "Checks",
 )
+
+
+class LazyEquations(Sequence):
+    """Equations of a step computed when first read (simplifying for a reader costs time the solve
+    does not need; a report reads them, a sweep never does)."""
+
+    def __init__(self, compute):
+        self._compute, self._items = compute, None
+
+    def _get(self) -> tuple:
+        if self._items is None:
+            self._items = tuple(self._compute())
+            self._compute = None
+        return self._items
+
+    def __getitem__(self, i):
+        return self._get()[i]
+
+    def __len__(self) -> int:
+        return len(self._get())
+
+    def __repr__(self) -> str:
+        return repr(self._items) if self._items is not None else "LazyEquations(<not computed yet>)"
 
 
 @dataclass(frozen=True)
@@ -41,9 +65,11 @@ class Trace:
     law: str = ""
 
     def add(self, section: str, title: str, equations=(), why: str = "") -> None:
+        """Record a step; ``equations`` is a sequence of (lhs, rhs) or a LazyEquations."""
         if section not in SECTIONS:
             raise ValueError(f"unknown trace section {section!r}")
-        self.steps.append(Step(section, title, tuple(equations), why, self.law))
+        eqs = equations if isinstance(equations, LazyEquations) else tuple(equations)
+        self.steps.append(Step(section, title, eqs, why, self.law))
 
     def section(self, name: str) -> list[Step]:
         return [s for s in self.steps if s.section == name]

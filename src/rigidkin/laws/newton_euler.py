@@ -17,6 +17,7 @@ from sympy.physics.vector import Vector, dynamicsymbols
 
 from ..errors import ModelError
 from ..mode import ModeSetup
+from ..trace import LazyEquations
 
 t = dynamicsymbols._t
 
@@ -116,8 +117,8 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
                    "H̄ = Ī·ω.")
         ref = "mass centre" if not b.is_massless else "reference point"
         for e, name in force_dirs:
-            lhs = kin.simplify_expr(setup.scalar(bal.force.dot(e)))
-            rhs = kin.simplify_expr(setup.scalar(bal.mass_accel.dot(e)))
+            lhs = setup.scalar(bal.force.dot(e))
+            rhs = setup.scalar(bal.mass_accel.dot(e))
             out.append(BalanceEquation(f"Euler's 1st law for {b.name} along {name}", b.name,
                                        "newton-euler", lhs, rhs))
         dirs = moment_dirs
@@ -126,8 +127,8 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
             fr = b.frame
             dirs = [(fr.x, fr.basis[0]), (fr.y, fr.basis[1]), (fr.z, fr.basis[2])]
         for e, name in dirs:
-            lhs = kin.simplify_expr(setup.scalar(bal.moment.dot(e)))
-            rhs = kin.simplify_expr(setup.scalar(bal.momentum_rate.dot(e)))
+            lhs = setup.scalar(bal.moment.dot(e))
+            rhs = setup.scalar(bal.momentum_rate.dot(e))
             out.append(BalanceEquation(f"Euler's 2nd law for {b.name} about its {ref}, along {name}", b.name,
                                        "newton-euler", lhs, rhs))
     kept = []
@@ -143,6 +144,7 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
                 "reaction can carry this load component.", where=eq.body,
                 hint="Add the constraint (and its reaction) that carries it, or check the load's direction.")
     for eq in kept:
-        tr.add("Balance laws", eq.label, [(eq.lhs, eq.rhs)],
+        tr.add("Balance laws", eq.label,
+               LazyEquations(lambda eq=eq: [(kin.simplify_expr(eq.lhs), kin.simplify_expr(eq.rhs))]),
                "F = m ā" if "1st" in eq.label else "M̄ = dH̄/dt (rate in the inertial frame)")
     return kept
