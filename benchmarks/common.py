@@ -3,12 +3,10 @@
 from __future__ import annotations
 
 import os
-import signal
 import statistics
 import sys
 import time
 from collections.abc import Callable
-from contextlib import contextmanager
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -18,23 +16,11 @@ class TimeLimit(Exception):
     """A measurement ran past its time limit."""
 
 
-@contextmanager
 def time_limit(seconds: float | None):
     """Interrupt the block after ``seconds`` (main thread, POSIX) with TimeLimit."""
-    if not seconds or not hasattr(signal, "SIGALRM"):
-        yield
-        return
+    from rigidkin.algebra import time_limit as limit
 
-    def handler(signum, frame):
-        raise TimeLimit()
-
-    old = signal.signal(signal.SIGALRM, handler)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
+    return limit(seconds, TimeLimit)
 
 
 #: Single-threaded figures are CPU seconds of this process (``time.process_time``): on a shared machine

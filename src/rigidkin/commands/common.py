@@ -4,7 +4,6 @@ progress line for slow steps, a time limit, and turning unexpected failures into
 
 from __future__ import annotations
 
-import signal
 import threading
 from contextlib import contextmanager
 from pathlib import Path
@@ -71,26 +70,15 @@ class TimeLimit(RigidkinError):
     """A step ran past the time limit the user gave (``--timeout``)."""
 
 
-@contextmanager
 def time_limit(seconds: float | None, what: str):
     """Stop ``what`` with a clear error after ``seconds`` (main thread, POSIX; otherwise no limit)."""
-    usable = (seconds and seconds > 0 and hasattr(signal, "setitimer")
-              and threading.current_thread() is threading.main_thread())
-    if not usable:
-        yield
-        return
+    from ..algebra import time_limit as limit
 
-    def alarm(signum, frame):
-        raise TimeLimit(f"{what} took longer than {seconds:g} s and was stopped.",
-                        hint="Simplify the model, or allow more time with --timeout SECONDS (0: no limit).")
+    def error():
+        return TimeLimit(f"{what} took longer than {seconds:g} s and was stopped.",
+                         hint="Simplify the model, or allow more time with --timeout SECONDS (0: no limit).")
 
-    old = signal.signal(signal.SIGALRM, alarm)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
+    return limit(seconds, error)
 
 
 def guarded(args, fn, *a, **kw):
