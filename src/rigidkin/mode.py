@@ -129,7 +129,7 @@ def _trace_frames(system, kin, trace: Trace) -> None:
         else:
             why = f"{fr.name} is rotated from {fr.parent.name} by {text(fr.angle)} about {text(fr.axis)}."
         if fr.description:
-            why += " " + fr.description
+            why = why.rstrip(".") + f" ({fr.description})."
         trace.add("Frames and coordinates", f"Frame {fr.name} and its basis", eqs, why)
 
 
