@@ -361,7 +361,7 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
     for q in dep:
         relations.append((q.diff(t), rate_map[q.diff(t)],
                           "solved from the constraints " + ", ".join(r.label for r in relating)))
-    red = Reduction(tuple(ind), tuple(dep), rate_map, accel_map, {}, tuple(built), tuple(relating))
+    red = Reduction(tuple(ind), tuple(dep), rate_map, accel_map, {}, built_in=tuple(built), relating=tuple(relating))
     _integrate(system, kin, red, relating, trace)
     red.relations = tuple(relations)
     if trace is not None:

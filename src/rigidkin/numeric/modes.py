@@ -365,6 +365,48 @@ class Hybrid:
             self._relation_fns[key] = (rel_slots, rel_fn, slots, rate_fn)
         return self._relation_fns[key]
 
+    def close_loops(self, mode: dict, t_, y, p, keep=(), tol: float = 1e-12) -> np.ndarray:
+        """Solve the mode's holonomic constraints with no closed form (a four-bar's loop closure) for its
+        dependent coordinates, by Newton's method from the given values (the independent ones and the
+        coordinates in ``keep`` stay as they are)."""
+        from scipy.optimize import root
+
+        key = ("loops", mode_key(mode))
+        if key not in self._relation_fns:
+            sol = self.solution(mode)
+            red = sol.setup.reduction
+            lay = self.layout
+            gaps = [r.gap for r in red.relating if r.gap is not None]
+            free = [q for q in sol.dependent if q not in sol.relations]
+            fn = compile_functions(lay.arguments(), [lay.to_plain(g) for g in gaps]) if gaps and free else None
+            self._relation_fns[key] = (fn, [lay.coordinates.index(q) for q in free])
+        fn, slots = self._relation_fns[key]
+        slots = [s_ for s_ in slots if s_ not in keep]
+        if fn is None or not slots:
+            return y
+        y = np.array(y, dtype=float)
+
+        def resid(z):
+            yy = y.copy()
+            yy[slots] = z
+            return np.asarray(fn(t_, *yy[:2 * self.layout.n], *p), dtype=float)
+
+        if np.max(np.abs(resid(y[slots]))) <= tol:
+            return y
+        out = root(lambda z: resid(z)[:len(slots)] if len(resid(z)) >= len(slots) else
+                   np.resize(resid(z), len(slots)), y[slots], method="hybr", tol=1e-14)
+        z = out.x
+        if np.max(np.abs(resid(z))) > 1e-9:
+            out = root(resid, y[slots], method="lm", tol=1e-14)
+            z = out.x
+            if np.max(np.abs(resid(z))) > 1e-9:
+                raise ModeUnavailable(
+                    f"the constraints of the mode ({describe_mode(self.system, mode)}) cannot be closed from the "
+                    f"given configuration (residual {np.max(np.abs(resid(z))):.3g}).", where=self.system.name,
+                    hint="Give the dependent coordinates values near an assembled configuration.")
+        y[slots] = z
+        return y
+
     def project_rates(self, mode: dict, t_, y, p) -> np.ndarray:
         """The state with the dependent rates set from the rate relations of ``mode``."""
         _, _, slots, rate_fn = self.relation_functions(mode)

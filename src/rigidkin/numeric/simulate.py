@@ -137,6 +137,7 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
         for s, v in zip(rel_slots, rel_fn(t0, *y, *p) if rel_slots else ()):
             if s not in given:
                 y[s] = float(v)
+        y = hyb.close_loops(cand, t0, y, p, keep=set(explicit))
         for s, v in zip(rate_slots, rate_fn(t0, *y, *p) if rate_slots else ()):
             if n + s not in given:
                 y[n + s] = float(v)
