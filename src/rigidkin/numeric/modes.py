@@ -376,7 +376,8 @@ class Hybrid:
             sol = self.solution(mode)
             red = sol.setup.reduction
             lay = self.layout
-            gaps = [r.gap for r in red.relating if r.gap is not None]
+            # bilateral constraints only (pins, collars): a unilateral contact's gap is an inequality
+            gaps = [r.gap for r in red.relating if r.gap is not None and not r.unilateral]
             free = [q for q in sol.dependent if q not in sol.relations]
             fn = compile_functions(lay.arguments(), [lay.to_plain(g) for g in gaps]) if gaps and free else None
             self._relation_fns[key] = (fn, [lay.coordinates.index(q) for q in free])
@@ -400,10 +401,7 @@ class Hybrid:
             out = root(resid, y[slots], method="lm", tol=1e-14)
             z = out.x
             if np.max(np.abs(resid(z))) > 1e-9:
-                raise ModeUnavailable(
-                    f"the constraints of the mode ({describe_mode(self.system, mode)}) cannot be closed from the "
-                    f"given configuration (residual {np.max(np.abs(resid(z))):.3g}).", where=self.system.name,
-                    hint="Give the dependent coordinates values near an assembled configuration.")
+                return y          # cannot be assembled from here: the checks that follow say so
         y[slots] = z
         return y
 
