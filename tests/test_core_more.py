@@ -220,3 +220,21 @@ def test_four_bar_linkage_closed_loop():
         ref = rhs[3].subs({q1.diff(t): on[th1.diff(t)], q2.diff(t): on[th2.diff(t)], q3.diff(t): on[th3.diff(t)]})
         ref = float(ref.subs({q1: on[th1], q2: on[th2], q3: on[th3]}).subs(vals))
         assert abs(mine - ref) < 1e-9 * max(1.0, abs(ref))
+
+
+def test_collar_on_a_rough_rotating_rod():
+    """A collar slides out along a rough rod turning at constant Ω in a horizontal plane: the rod's normal force
+    is the Coriolis one, N = 2 m Ω ẋ, so m ẍ = m Ω² x − µ N while ẋ > 0 (friction against the rod's own
+    motion, not against a fixed line)."""
+    s = rk.System("rotating rod")
+    m, Om, mu = s.parameter("m", "kg"), s.parameter("Omega", "rad/s"), s.parameter("mu")
+    x = s.coordinate("x", "distance of the collar from the axis, along the rod", kind="length")
+    R = s.frame("R", angle=Om * t, description="turns with the rod at the constant rate Omega")
+    C = s.point("C", offset=x * R.x)
+    b = s.body("collar", rk.shapes.PointMass(m), frame=s.inertial, at=C)
+    s.contact("rod", b, s.line(s.origin, R.y, name="rod"), centre=C, friction=mu, unilateral=False,
+              normal_name="N")
+    sol = s.solve()
+    reg = sol.regime_at({x.diff(t): 1.0, x: 1.0, m: 1.0, Om: 2.0, mu: 0.3})
+    assert sp.simplify(reg.reactions["N"] - 2 * m * Om * x.diff(t)) == 0
+    assert sp.simplify(reg.accelerations[x] - (Om**2 * x - 2 * mu * Om * x.diff(t))) == 0

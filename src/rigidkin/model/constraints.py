@@ -208,7 +208,7 @@ class Contact(Constraint):
         if self.surface.body is not None:
             v = v - kin.material_velocity(self.surface.body, loc)
         else:
-            v = v - kin.velocity(self.surface.anchor)  # a ground surface may translate with its point
+            v = v - self.surface.velocity_at(loc, kin)  # a ground surface may move with its point, and turn
         return v
 
     def tangents(self, kin) -> list[Vector]:
@@ -253,7 +253,7 @@ class Contact(Constraint):
         return [SlidingFriction(self.name, body=self.body, centre=self.centre, radius=self.radius,
                                 normal=self.normal(kin), mu=self.friction.mu, normal_force=self.N,
                                 against_body=self.surface.body,
-                                against_point=self.surface.anchor if self.surface.body is None else None,
+                                against_surface=self.surface if self.surface.body is None else None,
                                 normal_unilateral=self.unilateral, sign_symbol=sp.Symbol(f"sigma_{self.name}"))]
 
 

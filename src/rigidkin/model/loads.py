@@ -263,6 +263,7 @@ class SlidingFriction(Load):
     normal_force: sp.Expr = None
     against_body: object | None = None
     against_point: Point | None = None
+    against_surface: object | None = None
     normal_unilateral: bool = True
     sign_symbol: sp.Symbol = None
     normal_sign_symbol: sp.Symbol | None = None
@@ -281,6 +282,8 @@ class SlidingFriction(Load):
         v = kin.material_velocity(self.body, loc)
         if self.against_body is not None:
             v = v - kin.material_velocity(self.against_body, loc)
+        elif self.against_surface is not None:
+            v = v - self.against_surface.velocity_at(loc, kin)
         elif self.against_point is not None:
             v = v - kin.velocity(self.against_point)
         return v

@@ -40,6 +40,15 @@ class Line:
     def gap(self, centre_pos: Vector, radius: sp.Expr, kin) -> sp.Expr:
         return (centre_pos - kin.position(self.point)).dot(self.normal) - radius
 
+    def velocity_at(self, location: Vector, kin) -> Vector:
+        """Velocity of the line's material point at ``location`` when it is not fixed in a body: it moves
+        with its point and turns as its normal turns (ω = n × ṅ, a rotation in the plane of motion)."""
+        v = kin.velocity(self.point)
+        ndot = self.normal.dt(kin.F.ref)
+        if ndot != Vector(0) and not kin.is_zero_vector(ndot):
+            v = v + self.normal.cross(ndot).cross(location - kin.position(self.point))
+        return v
+
 
 Plane = Line
 
@@ -64,6 +73,10 @@ class Circle:
     def _distance(self, centre_pos: Vector, kin) -> tuple[Vector, sp.Expr]:
         d = centre_pos - kin.position(self.centre)
         return d, kin.magnitude(d)
+
+    def velocity_at(self, location: Vector, kin) -> Vector:
+        """A circle not fixed in a body moves with its centre (it does not turn)."""
+        return kin.velocity(self.centre)
 
     def normal_at(self, centre_pos: Vector, kin) -> Vector:
         if self.normal_hint is not None:
