@@ -12,20 +12,51 @@ t = dynamicsymbols._t
 _INDENT = "    "
 
 
+def _along(vector) -> str:
+    """', positive along −Ex' for a reaction's direction (empty when it cannot be written simply)."""
+    try:
+        words = text(vector)
+    except (TypeError, ValueError):
+        return ""
+    return f", positive along {words}" if len(words) <= 40 else ""
+
+
+def _directions(system, c) -> dict:
+    """Reaction symbol → its direction vector for contacts and collars (planar problems)."""
+    try:
+        from ..kinematics import Kinematics
+
+        kin = system._cache.get("kin") or Kinematics(system)
+        system._cache["kin"] = kin
+        if not kin.planar:
+            return {}
+        if c.kind == "contact" and hasattr(c, "tangents"):
+            out = {c.N: kin.simplify_vector(c.normal(kin))}
+            if len(c.reactions()) > 1:
+                out[c.F] = c.tangents(kin)[0]
+            return out
+        if c.kind == "collar":
+            return {c.N: c._normals(kin)[0]}
+    except Exception:          # a direction is a courtesy: never let it stop the report
+        return {}
+    return {}
+
+
 def reaction_labels(system) -> dict[str, str]:
-    """Reaction name → what it is (``"normal force of contact A (wall: pushes along +Ex)"``)."""
+    """Reaction name → what it is (``"normal force of contact A, positive along Ex (wall)"``)."""
     out = {}
     for c in system.constraints.values():
         syms = c.reactions()
+        dirs = _directions(system, c)
         for sym in syms:
             name = sym.name
             kind = c.kind
             if kind == "contact":
                 what = "normal force" if sym == c.N else "friction force"
-                label = f"{what} of contact {c.name}"
+                label = f"{what} of contact {c.name}" + (_along(dirs[sym]) if sym in dirs else "")
             elif kind == "collar":
                 what = "track normal force" if name.startswith(c.N.name) else "track reaction couple"
-                label = f"{what} of collar {c.name}"
+                label = f"{what} of collar {c.name}" + (_along(dirs[sym]) if sym in dirs else "")
             elif kind == "pin" and name[-1:] in ("x", "y", "z"):
                 frame = getattr(c, "basis_frame", None) or system.inertial
                 label = f"pin reaction of {c.name} along {frame.basis['xyz'.index(name[-1])]}"
