@@ -45,6 +45,8 @@ class Equilibrium:
         out = f"equilibrium {conf}: {self.stability}"
         if self.natural_frequencies:
             out += "; ω_n = " + ", ".join(text(w) for w in self.natural_frequencies)
+        if self.damping_ratios:
+            out += "; ζ = " + ", ".join(text(z) for z in self.damping_ratios)
         return out
 
 
