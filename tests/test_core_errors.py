@@ -96,3 +96,17 @@ def test_pendulum_doctest_value():
     sol = s.solve()
     g = s.parameters["g"]
     assert sp.simplify(sol.accelerations[th] + 3 * g * sp.sin(th) / (2 * l)) == 0
+
+
+def test_point_declared_fixed_in_a_body_that_moves_relative_to_it():
+    s = rk.System("disk")
+    m, r = s.parameter("m", "kg"), s.parameter("r", "m")
+    x = s.coordinate("x", "centre along Ex", kind="length")
+    phi = s.coordinate("phi", "rotation")
+    F = s.inertial
+    D = s.frame("D", angle=phi)
+    C = s.point("C", offset=x * F.x + r * F.y)
+    disk = s.body("disk", rk.shapes.Disk(m, r), frame=D, at=C)
+    s.point("P", C, -r * F.y, body=disk)          # the contact point is not a material point of the disk
+    with pytest.raises(ModelError, match="point P is declared fixed in body disk, but it moves"):
+        s.solve()

@@ -75,6 +75,8 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
             raise ModelError(f"the mode names '{name}', which is not a constraint of the system.",
                              where="mode", hint=f"Constraints: {', '.join(system.constraints) or 'none'}.")
     kin = system._cache.get("kin") or Kinematics(system)
+    if "kin" not in system._cache:
+        _check_fixed_points(system, kin)
     system._cache["kin"] = kin
     trace = Trace(law="kinematics")
     _trace_frames(system, kin, trace)
@@ -109,6 +111,23 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
     _trace_kinematics(setup)
     system._cache[key] = setup
     return setup
+
+
+def _check_fixed_points(system, kin) -> None:
+    """A point declared fixed in a body must not move relative to it (its offset from the mass centre is
+    constant in the body frame); otherwise its velocity would not be the body's material velocity."""
+    for p in system.points.values():
+        b = p.body
+        if b is None or p is b.centre:
+            continue
+        rel = kin.position(p) - kin.position(b.centre)
+        drift = rel.dt(b.frame.ref)
+        if drift != 0 and not kin.is_zero_vector(drift):
+            raise ModelError(f"point {p.name} is declared fixed in body {b.name}, but it moves relative to it "
+                             f"(its offset from {b.centre.name} changes in frame {b.frame.name} at "
+                             f"{text(kin.simplify_vector(drift))}).", where=f"point {p.name}",
+                             hint="Locate it by a vector fixed in the body's frame, or do not fix it in the "
+                                  "body (a contact point that moves round a wheel is not a material point).")
 
 
 def _trace_frames(system, kin, trace: Trace) -> None:
