@@ -110,3 +110,18 @@ def test_point_declared_fixed_in_a_body_that_moves_relative_to_it():
     s.point("P", C, -r * F.y, body=disk)          # the contact point is not a material point of the disk
     with pytest.raises(ModelError, match="point P is declared fixed in body disk, but it moves"):
         s.solve()
+
+
+def test_nothing_to_move():
+    with pytest.raises(ModelError, match="no bodies"):
+        rk.System("empty").solve()
+    s = rk.System("still")
+    s.body("b", rk.shapes.PointMass(s.parameter("m")), frame=s.inertial, at=s.origin)
+    with pytest.raises(ModelError, match="no coordinates"):
+        s.solve()
+    s = rk.System("unused")
+    x = s.coordinate("x", "along Ex", kind="length")
+    s.coordinate("y", "never used", kind="length")
+    s.body("b", rk.shapes.PointMass(s.parameter("m")), frame=s.inertial, at=s.point("P", offset=x * s.inertial.x))
+    with pytest.raises(ModelError, match="coordinates y locate no point"):
+        s.solve()

@@ -76,6 +76,7 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
                              where="mode", hint=f"Constraints: {', '.join(system.constraints) or 'none'}.")
     kin = system._cache.get("kin") or Kinematics(system)
     if "kin" not in system._cache:
+        _check_model(system, kin)
         _check_fixed_points(system, kin)
     system._cache["kin"] = kin
     trace = Trace(law="kinematics")
@@ -111,6 +112,29 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
     _trace_kinematics(setup)
     system._cache[key] = setup
     return setup
+
+
+def _check_model(system, kin) -> None:
+    """Something to move and something moving: coordinates, bodies, and every coordinate used."""
+    if not system.bodies:
+        raise ModelError("the system has no bodies, so there is nothing to derive.", where=system.name,
+                         hint="Add a body with System.body(...).")
+    if not system.coordinates:
+        raise ModelError("the system has no coordinates, so nothing can move.", where=system.name,
+                         hint="Declare the generalised coordinates with System.coordinate(...).")
+    used = set()
+    for p in system.points.values():
+        for m, _fr in kin.position(p).args:
+            used |= {f for f in m.atoms(sp.Function)}
+    for fr in system.frames.values():
+        for a in (fr.angle,) + tuple(fr.angles or ()):
+            if a is not None:
+                used |= {f for f in sp.sympify(a).atoms(sp.Function)}
+    unused = [q for q in system.coordinates if q not in used]
+    if unused:
+        names = ", ".join(q.func.__name__ for q in unused)
+        raise ModelError(f"the coordinates {names} locate no point and turn no frame, so they move nothing.",
+                         where=system.name, hint="Use them in a point's offset or a frame's angle, or remove them.")
 
 
 def _check_fixed_points(system, kin) -> None:

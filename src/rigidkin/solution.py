@@ -232,7 +232,7 @@ def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "
     if rank < n:
         _, _, vh = np.linalg.svd(nA)
         null = vh[rank:].conj().T
-        loose = [str(unknowns[i]) for i in range(n) if np.abs(null[i]).max() > 1e-8]
+        loose = [text(unknowns[i]) for i in range(n) if np.abs(null[i]).max() > 1e-8]
         raise ConstraintError(
             f"the balance laws give {len(labels)} equations of rank {rank} for {n} unknowns; "
             f"{', '.join(loose)} cannot be determined from them.",
