@@ -125,3 +125,9 @@ def test_nothing_to_move():
     s.body("b", rk.shapes.PointMass(s.parameter("m")), frame=s.inertial, at=s.point("P", offset=x * s.inertial.x))
     with pytest.raises(ModelError, match="coordinates y locate no point"):
         s.solve()
+
+
+def test_strings_are_refused_in_the_python_api():
+    s, rod, th, R, l = pendulum()
+    with pytest.raises(ModelError, match="got the string 'l/2'"):
+        s.spring("k", "G", s.origin, "l/2")

@@ -186,7 +186,7 @@ class System:
             ref.orient_body_fixed(parent.ref, tuple(angles), sequence)
             fr = Frame(name, ref, basis, parent, None, None, sequence, tuple(angles), description)
         else:
-            ang = sp.sympify(0 if angle is None else angle)
+            ang = _expr(0 if angle is None else angle, f"frame {name}")
             ax = parent.unit(axis) if isinstance(axis, str) else axis
             if not isinstance(ax, Vector):
                 raise ModelError(f"axis must be a basis name or a vector, not {axis!r}.", where=f"frame {name}")
@@ -291,7 +291,7 @@ class System:
                normal: Vector | None = None) -> Circle:
         """A circular (spherical in 3D) surface; the body touches it from ``inside`` or outside."""
         p = self._check_point(centre, f"circle {name}")
-        return Circle(p, sp.sympify(radius), inside, self._check_body(body, name, True), name, normal)
+        return Circle(p, _expr(radius, f"circle {name}"), inside, self._check_body(body, name, True), name, normal)
 
     plane = line
     sphere = circle
@@ -333,7 +333,7 @@ class System:
             raise ModelError("surface must be a line/plane or circle/sphere (System.line, System.circle).",
                              where=where)
         fr = _friction(friction, where)
-        con = C.Contact(name, body=b, centre=c, radius=sp.sympify(radius), surface=surface, friction=fr,
+        con = C.Contact(name, body=b, centre=c, radius=_expr(radius, where), surface=surface, friction=fr,
                         unilateral=unilateral, normal_name=normal_name, friction_name=friction_name,
                         description=description)
         for sym in con.reactions():
@@ -351,7 +351,7 @@ class System:
         where = f"contact {name}"
         b = self._check_body(body, where)
         c = self._check_point(centre, where) if centre is not None else b.centre
-        con = DiskContact(name, body=b, centre=c, radius=sp.sympify(radius), surface=surface,
+        con = DiskContact(name, body=b, centre=c, radius=_expr(radius, where), surface=surface,
                           friction=_friction(friction, where), unilateral=unilateral, normal_name=normal_name,
                           friction_name=friction_name, description=description,
                           axis=self._check_vector(axis, where))
@@ -393,7 +393,7 @@ class System:
             if len(bodies) != len(pts):
                 raise ModelError(f"give one body (or None) for each of the {len(pts)} points.", where=where)
             bs = tuple(self._check_body(b, where, allow_none=True) for b in bodies)
-        con = C.Cable(name, points=pts, bodies=bs, length=sp.sympify(length), tension_name=tension_name,
+        con = C.Cable(name, points=pts, bodies=bs, length=_expr(length, where), tension_name=tension_name,
                       description=description)
         self._claim(con.T.name, "reaction", owner=f"cable {name}")
         return self._add_constraint(con)
@@ -415,7 +415,7 @@ class System:
     def gravity(self, g, direction: Vector | None = None, name: str = "gravity") -> None:
         """Uniform gravity of magnitude ``g`` along the unit vector ``direction`` (default −Ey)."""
         d = -self.inertial.y if direction is None else self._check_vector(direction, f"load {name}")
-        self._add_load(L.Gravity(name, g=sp.sympify(g), direction=d))
+        self._add_load(L.Gravity(name, g=_expr(g, f"load {name}"), direction=d))
 
     def force(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "") -> L.Force:
         """A known force at ``point`` (of ``body``; default: the body the point is fixed in)."""
@@ -440,7 +440,7 @@ class System:
         ba = self._body_of(pa, body_a, where)
         bb = self._check_body(body_b, where, True) if body_b is not None else pb.body
         return self._add_load(L.Spring(name, point_a=pa, body_a=ba, point_b=pb, body_b=bb,
-                                       stiffness=sp.sympify(stiffness), natural_length=sp.sympify(natural_length),
+                                       stiffness=_expr(stiffness, where), natural_length=_expr(natural_length, where),
                                        description=description))
 
     def torsional_spring(self, name: str, body_a, stiffness, angle, natural_angle=0, body_b=None,
@@ -449,7 +449,7 @@ class System:
         where = f"torsional spring {name}"
         return self._add_load(L.TorsionalSpring(
             name, body_a=self._check_body(body_a, where), body_b=self._check_body(body_b, where, True),
-            stiffness=sp.sympify(stiffness), angle=sp.sympify(angle), natural_angle=sp.sympify(natural_angle),
+            stiffness=_expr(stiffness, where), angle=_expr(angle, where), natural_angle=_expr(natural_angle, where),
             axis=self.inertial.z if axis is None else self._check_vector(axis, where), description=description))
 
     def damper(self, name: str, point_a: Point | str, law, along: Vector | None = None,
@@ -477,8 +477,8 @@ class System:
         where = f"friction {name}"
         return self._add_load(L.SlidingFriction(
             name, body=self._check_body(body, where), centre=self._check_point(centre, where),
-            radius=sp.sympify(radius), normal=self._check_vector(normal, where), mu=sp.sympify(mu),
-            normal_force=sp.sympify(normal_force), against_body=self._check_body(against_body, where, True),
+            radius=_expr(radius, where), normal=self._check_vector(normal, where), mu=_expr(mu, where),
+            normal_force=_expr(normal_force, where), against_body=self._check_body(against_body, where, True),
             against_point=self._check_point(against_point, where) if against_point is not None else None,
             description=description))
 
@@ -513,6 +513,16 @@ class System:
                 f"{len(self.constraints)} constraints, {len(self.loads)} loads)")
 
 
+def _expr(value, where: str = "") -> sp.Expr:
+    """A number or sympy expression given to the Python API (a string is refused: no sympify on text)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, sp.Basic)):
+        kind = "the string " + repr(value)[:40] if isinstance(value, str) else type(value).__name__
+        raise ModelError(f"expected a number or a sympy expression, got {kind}.", where=where or None,
+                         hint="In Python, build expressions from the symbols System.parameter and "
+                              "System.coordinate return (l/2, m*g); text expressions belong in problem files.")
+    return sp.sympify(value)
+
+
 def _friction(friction, where):
     if friction in (None, "smooth", 0):
         return C.SMOOTH
@@ -521,5 +531,5 @@ def _friction(friction, where):
     if isinstance(friction, C.Coulomb):
         return friction
     if isinstance(friction, (int, float, sp.Basic)):
-        return C.Coulomb(sp.sympify(friction))
+        return C.Coulomb(_expr(friction, where))
     raise ModelError(f"friction must be 'smooth', 'rolling' or a coefficient µ, not {friction!r}.", where=where)
