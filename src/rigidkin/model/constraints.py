@@ -69,15 +69,17 @@ class Constraint:
 
 
 def _two_sided(symbol, direction, kind, body_a, point_a, body_b, point_b, label, source, loc=None):
-    apps = [Application(body_a, point_a, symbol * direction if kind != "torque" else symbol * direction,
-                        label, source, reaction=symbol, location=loc)]
-    if kind == "torque":
-        apps = [Application(body_a, None, symbol * direction, label, source, reaction=symbol)]
-        if body_b is not None:
-            apps.append(Application(body_b, None, -symbol * direction, label, source, reaction=symbol))
-        return tuple(apps)
+    """The reaction ``symbol``·``direction`` on ``body_a`` and its opposite on ``body_b`` (if any).
+
+    A force acts at a point (``point_a``/``point_b``, or the location ``loc``); a torque (``kind ==
+    "torque"``) acts on the body as a whole.
+    """
+    torque = kind == "torque"
+    apps = [Application(body_a, None if torque else point_a, symbol * direction, label, source, reaction=symbol,
+                        location=None if torque else loc)]
     if body_b is not None:
-        apps.append(Application(body_b, point_b, -symbol * direction, label, source, reaction=symbol, location=loc))
+        apps.append(Application(body_b, None if torque else point_b, -symbol * direction, label, source,
+                                reaction=symbol, location=None if torque else loc))
     return tuple(apps)
 
 
