@@ -129,7 +129,11 @@ class Kinematics:
 
     def tangent_basis(self, n: Vector) -> list[Vector]:
         """Two unit vectors that complete ``n`` to a right-handed basis (n, t1, t2) → t1, t2."""
-        for fr in self.system.frames.values():
+        # prefer the frame nearest the bodies that is not a body's own frame (a heading frame turns the
+        # no-slip rows into their short, familiar form), then the inertial frame
+        body_frames = {b.frame.name for b in self.system.bodies.values()}
+        frames = [f for f in reversed(list(self.system.frames.values())) if f.name not in body_frames]
+        for fr in frames:
             axes = (fr.x, fr.y, fr.z)
             for i, a in enumerate(axes):
                 for sgn in (1, -1):
