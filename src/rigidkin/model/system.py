@@ -199,27 +199,24 @@ class System:
         if not isinstance(frame, Frame) or self.frames.get(frame.name) is not frame:
             raise ModelError(f"{frame!r} is not a frame of this system.", where=where)
 
+    def _lookup(self, kind: str, table: dict, cls, obj, where):
+        """An object of this system given itself or by name; a clear error otherwise."""
+        if isinstance(obj, str):
+            if obj not in table:
+                raise ModelError(f"there is no {kind} named '{obj}'.", where=where,
+                                 hint=f"Known {kind}s: {', '.join(table) or 'none yet'}.")
+            return table[obj]
+        if not isinstance(obj, cls) or table.get(obj.name) is not obj:
+            raise ModelError(f"{obj!r} is not a {kind} of this system.", where=where)
+        return obj
+
     def _check_point(self, point, where) -> Point:
-        if isinstance(point, str):
-            if point not in self.points:
-                raise ModelError(f"there is no point named '{point}'.", where=where,
-                                 hint=f"Known points: {', '.join(self.points)}.")
-            return self.points[point]
-        if not isinstance(point, Point) or self.points.get(point.name) is not point:
-            raise ModelError(f"{point!r} is not a point of this system.", where=where)
-        return point
+        return self._lookup("point", self.points, Point, point, where)
 
     def _check_body(self, body, where, allow_none=False):
         if body is None and allow_none:
             return None
-        if isinstance(body, str):
-            if body not in self.bodies:
-                raise ModelError(f"there is no body named '{body}'.", where=where,
-                                 hint=f"Known bodies: {', '.join(self.bodies) or 'none yet'}.")
-            return self.bodies[body]
-        if not isinstance(body, Body) or self.bodies.get(body.name) is not body:
-            raise ModelError(f"{body!r} is not a body of this system.", where=where)
-        return body
+        return self._lookup("body", self.bodies, Body, body, where)
 
     def _check_vector(self, v, where) -> Vector:
         if isinstance(v, (int, float)) and v == 0 or (isinstance(v, sp.Basic) and v == 0):
