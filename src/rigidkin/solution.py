@@ -323,7 +323,7 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
                 return {str(r): sp.Integer(0) for r in missing}
             acc = accel_map
             rhs = -b - A.extract(list(range(A.rows)), list(range(len(accel_syms)))) * sp.Matrix(
-                [acc[q] for q in red.independent])
+                [acc[q] for q in red.independent]) if accel_syms else -b      # 0 DOF: statics
             Al = A.extract(list(range(A.rows)), list(range(len(accel_syms), len(unknowns))))
             rows = _determinacy(Al, rhs, reactions, [e.label for e in equations], dof_note)
             lam = solve_square(Al.extract(rows, list(range(len(reactions)))), rhs.extract(rows, [0]),
@@ -455,8 +455,9 @@ def _conditions(setup, choices, sign_map, react):
         fr = getattr(c, "friction", None)
         if setup.states.get(c.name) == "stick" and hasattr(fr, "mu") and str(c.F) in react:
             N, F = react[str(c.N)], react[str(c.F)]
-            valid.append(Condition(setup.kin.simplify_expr(fr.mu * N - F), ">=",
-                                   f"friction at {c.name} within µN (no slip)", "validity"))
-            valid.append(Condition(setup.kin.simplify_expr(fr.mu * N + F), ">=",
-                                   f"friction at {c.name} within µN (no slip)", "validity"))
+            mu, word = getattr(fr, "static", fr.mu), ("µsN" if getattr(fr, "two", False) else "µN")
+            valid.append(Condition(setup.kin.simplify_expr(mu * N - F), ">=",
+                                   f"friction at {c.name} within {word} (no slip)", "validity"))
+            valid.append(Condition(setup.kin.simplify_expr(mu * N + F), ">=",
+                                   f"friction at {c.name} within {word} (no slip)", "validity"))
     return conds, valid

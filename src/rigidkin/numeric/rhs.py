@@ -4,7 +4,8 @@ In a mode the independent accelerations q̈_i come from the Solution's regime; t
 coordinates follow the constraints: q̇_d from the reduction's rate relations and q̈_d from its
 acceleration relations, with q̈_i put in.  Every coordinate is integrated, so the state can be
 carried into any other mode.  Expressions become numeric functions through ``compile_functions``
-(``sympy.cse`` then one ``lambdify``): that is the one place a faster backend plugs in.
+(``sympy.cse`` then one ``lambdify``, on our own argument names: no user text in the code it writes):
+that is the one place a faster backend plugs in.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ..errors import RigidkinError
+from .codesafe import safe_lambdify
 from .state import StateLayout
 
 t = dynamicsymbols._t
@@ -49,7 +51,7 @@ def compile_functions(args: Sequence[sp.Symbol], exprs: Sequence[sp.Expr]) -> Ca
         return _BACKEND(list(args), exprs)
     if not exprs:
         return lambda *a: ()
-    return sp.lambdify(list(args), exprs, modules="numpy", cse=True)
+    return safe_lambdify(list(args), exprs, where="simulation")      # our own names only in the code
 
 
 def _is_ready(mapping) -> bool:
