@@ -75,12 +75,12 @@ def html_text(text: object) -> str:
     return html.escape(_printable(text), quote=True)
 
 
-_MARKDOWN_SPECIAL = re.compile(r"([\\`*_{}\[\]()#+\-.!|$~^=:])")
+_MARKDOWN_SPECIAL = re.compile(r"([\\`*_{}\[\]#|$~])")
 
 
 def markdown_text(text: object, inline: bool = True) -> str:
     """Text for Markdown, shown as it is: no raw HTML (``< > &`` as character references), no emphasis,
-    link, image, heading, list, table cell or math (every Markdown punctuation character backslash-escaped).
+    code, link, image, heading, table cell or math (``\\ ` * _ { } [ ] # | $ ~`` backslash-escaped).
     ``inline``: newlines become spaces (headings, table cells, emphasis)."""
     s = _printable(text)
     if inline:
@@ -91,8 +91,7 @@ def markdown_text(text: object, inline: bool = True) -> str:
 
 # LaTeX ----------------------------------------------------------------------------------------------------
 _TEX_SPECIAL = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "$": r"\$", "&": r"\&", "#": r"\#",
-                "%": r"\%", "_": r"\_", "^": r"\textasciicircum{}", "~": r"\textasciitilde{}",
-                "<": r"\textless{}", ">": r"\textgreater{}", "|": r"\textbar{}"}
+                "%": r"\%", "_": r"\_", "^": r"\textasciicircum{}", "~": r"\textasciitilde{}"}
 
 
 def tex_text(text: object) -> str:

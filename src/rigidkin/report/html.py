@@ -3,15 +3,16 @@
 Everything the page shows is inside the one file: formulas are presentation MathML (rendered by the
 browser itself, no script), figures are PNG data URIs, the animation is matplotlib's HTML5 player
 with its frames embedded.  A content security policy forbids every fetch, so the page cannot reach
-the network even by accident.
+the network even by accident.  Every piece of text is escaped (:func:`rigidkin.textsafe.html_text`);
+formulas are built as XML elements whose text the DOM escapes.
 """
 
 from __future__ import annotations
 
 import base64
-import html
 import re
 
+from ..textsafe import html_text
 from .document import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
 from .notation import mathml, mathml_condition
 
@@ -62,7 +63,7 @@ def offline_player(player: str) -> str:
 
 
 def _esc(s: str) -> str:
-    return html.escape(str(s), quote=True)
+    return html_text(s)
 
 
 def _math(m: Math, display: bool) -> str:
@@ -103,11 +104,11 @@ def _block(b) -> str:
 
 def to_html(doc: Document) -> str:
     """The whole page as a string."""
-    nav = "".join(f'<a href="#{s.key}">{i + 1}. {_esc(s.title)}</a>' for i, s in enumerate(doc.sections))
+    nav = "".join(f'<a href="#{_esc(s.key)}">{i + 1}. {_esc(s.title)}</a>' for i, s in enumerate(doc.sections))
     body = []
     for i, s in enumerate(doc.sections):
         blocks = "\n".join(_block(b) for b in s.blocks)
-        body.append(f'<section id="{s.key}"><h2>{i + 1}. {_esc(s.title)}</h2>\n{blocks}\n</section>')
+        body.append(f'<section id="{_esc(s.key)}"><h2>{i + 1}. {_esc(s.title)}</h2>\n{blocks}\n</section>')
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             f'<meta http-equiv="Content-Security-Policy" content="{CSP}">'
             '<meta name="viewport" content="width=device-width, initial-scale=1">'

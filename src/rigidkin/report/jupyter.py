@@ -47,7 +47,14 @@ def system_html(system) -> str:
 
 def _mathjax_text(s: str) -> str:
     """Text for ``\\text{...}`` in a notebook (MathJax): TeX's specials escaped, Unicode kept as it is."""
-    return re.sub(r"([#$%&_{}\\])", r"\\\1", s)
+    s = "".join(ch for ch in str(s) if ch == " " or ch.isprintable())
+    s = re.sub(r"([#$%&_{}])", r"\\\1", s.replace("\\", "\0"))
+    return s.replace("\0", r"\backslash ").replace("^", r"\hat{}").replace("~", r"\sim ")
+
+
+def _no_markup(s: str) -> str:
+    """No ``<`` or ``>`` in a LaTeX display (the classic notebook inserts it as HTML): look-alikes instead."""
+    return s.replace("<", "\u2039").replace(">", "\u203a")
 
 
 def system_latex(system) -> str:
@@ -58,7 +65,7 @@ def system_latex(system) -> str:
              + (f" ({p.value:g} {_mathjax_text(p.unit)})" if p.value is not None else "") + "}"
              for p in system.parameter_info.values()]
     head = rf"\text{{{_mathjax_text(system.title)}}} & "
-    return "$\\displaystyle \\begin{array}{ll}" + " \\\\ ".join([head, *rows]) + "\\end{array}$"
+    return _no_markup("$\\displaystyle \\begin{array}{ll}" + " \\\\ ".join([head, *rows]) + "\\end{array}$")
 
 
 def solution_html(solution) -> str:

@@ -22,6 +22,7 @@ from sympy.physics.vector.printing import VectorLatexPrinter
 from sympy.printing.mathml import MathMLPresentationPrinter
 
 from ..printing import GREEK
+from ..textsafe import tex_text
 
 t = dynamicsymbols._t
 
@@ -123,11 +124,22 @@ def _basis_name(frame, i) -> str:
 
 
 # MathML --------------------------------------------------------------------------------------------
+_BARE_AMPERSAND = re.compile(r"&(?![A-Za-z][A-Za-z0-9]*;|#[0-9]+;|#[xX][0-9A-Fa-f]+;)")
+
+
+def _xml_text(data) -> str:
+    """Text for a MathML element: ``<`` and ``>`` always escaped, ``&`` unless it starts a character
+    reference (sympy writes ``&InvisibleTimes;`` as text), so no name can open an element."""
+    return _BARE_AMPERSAND.sub("&amp;", str(data)).replace("<", "&lt;").replace(">", "&gt;")
+
+
 class MathMLPrinter(MathMLPresentationPrinter):
     """sympy's presentation MathML with dynamics notation, basis names and labels."""
 
     def __init__(self, settings=None):
         super().__init__({"mat_delim": "(", **(settings or {})})
+        raw = self.dom.createTextNode         # sympy's: writes its text unescaped (for its own entities)
+        self.dom.createTextNode = lambda data: raw(_xml_text(data))
 
     def _el(self, tag: str, *children, text: str | None = None, **attrs) -> Element:
         e = self.dom.createElement(tag)
@@ -288,25 +300,61 @@ def _latex_name_piece(s: str) -> str:
     return "".join(_LATEX_GREEK.get(ch, ch) for ch in s)
 
 
+_PLAIN_NAME = re.compile(r"\w+")
+
+
+def _plain(name: str) -> bool:
+    """A name sympy's LaTeX printer may print itself: letters (any script), digits and ``_`` only."""
+    return _PLAIN_NAME.fullmatch(name) is not None
+
+
 class LatexPrinter(VectorLatexPrinter):
-    """sympy's vector LaTeX printer (dots for rates) with the user's basis names and labels."""
+    """sympy's vector LaTeX printer (dots for rates) with the user's basis names and labels.
+
+    A name that is not plain (:func:`_plain`) is never handed to sympy, which would copy it into the
+    LaTeX as it is (``\\input``, ``\\write18``): it is shown as escaped text instead.
+    """
+
+    def _symbol(self, name: str) -> str:
+        return super()._print_Symbol(sp.Symbol(name)) if _plain(name) else rf"\text{{{_latex_text(name)}}}"
 
     def _print_Symbol(self, expr, style="plain"):
         text, symbol = split_label(expr.name)
         if not text:
-            return super()._print_Symbol(expr)
+            return self._symbol(expr.name)
         after = ""
         if "\0" in symbol:
             symbol, after = symbol.split("\0")
         out = rf"\text{{{_latex_text(text)}}}"
         if symbol:
-            out += r"\ " + super()._print_Symbol(sp.Symbol(symbol))
+            out += r"\ " + self._symbol(symbol)
         if after:
             out += rf"\ \text{{{_latex_text(after)}}}"
         return out
 
+    _print_Dummy = _print_Symbol
+
+    def _print_Function(self, expr, exp=None):
+        if isinstance(expr.func, sp.core.function.UndefinedFunction) and not _plain(expr.func.__name__):
+            name = rf"\text{{{_latex_text(expr.func.__name__)}}}"
+            if expr.args != (t,):
+                name += r"\left(" + ", ".join(self._print(a) for a in expr.args) + r"\right)"
+            return f"{name}^{{{exp}}}" if exp else name
+        return super()._print_Function(expr, exp)
+
+    def _print_Derivative(self, der_expr):
+        f = der_expr.expr
+        if _is_rate(der_expr) and not _plain(f.func.__name__):
+            order = sum(c for _, c in der_expr.variable_count)
+            name = rf"\text{{{_latex_text(f.func.__name__)}}}"
+            return {1: rf"\dot{{{name}}}", 2: rf"\ddot{{{name}}}"}.get(order, rf"{name}^{{({order})}}")
+        return super()._print_Derivative(der_expr)
+
     def basis(self, frame, i) -> str:
-        head, sub = basis_parts(_basis_name(frame, i))
+        name = _basis_name(frame, i)
+        if not _plain(name):
+            return rf"\mathbf{{\text{{{_latex_text(name)}}}}}"
+        head, sub = basis_parts(name)
         sub = ",".join(_latex_name_piece(p) if p in _LATEX_GREEK or len(p) == 1 else rf"\mathrm{{{p}}}"
                        for p in sub.split(",")) if sub else ""
         return rf"\mathbf{{{head}}}_{{{sub}}}" if sub else rf"\mathbf{{{head}}}"
@@ -338,9 +386,8 @@ _LATEX = LatexPrinter()
 
 
 def _latex_text(s: str) -> str:
-    """Text for ``\\text{...}``: TeX's special characters escaped, Greek letters as math."""
-    s = re.sub(r"([#$%&_{}])", r"\\\1", s)
-    s = s.replace("~", r"\textasciitilde{}").replace("^", r"\textasciicircum{}")
+    """Text for ``\\text{...}``: every character with a meaning to TeX escaped, Greek letters as math."""
+    s = tex_text(s)
     for ch, cmd in _LATEX_GREEK.items():
         s = s.replace(ch, f"${cmd}$")
     return s
@@ -348,8 +395,7 @@ def _latex_text(s: str) -> str:
 
 def latex_text(s: str) -> str:
     """Plain text (a title, a reason) for a TeX document: TeX's specials escaped, Unicode made TeX (ASCII out)."""
-    s = s.replace("\\", "\0")
-    s = _latex_text(s).replace("\0", r"\textbackslash{}")
+    s = _latex_text(s)
     repl = {"≥": r"$\geq$", "≤": r"$\leq$", "×": r"$\times$", "·": r"$\cdot$", "−": "-", "→": r"$\to$",
             "⊗": r"$\otimes$", "²": r"$^2$", "³": r"$^3$", "°": r"$^\circ$", "≈": r"$\approx$",
             "\u0307": "", "\u0308": "", "\u0302": "", "–": "--", "—": "---", "…": r"\ldots{}"}

@@ -1,7 +1,8 @@
 """Writing a report to a file: the format from the file's extension (.html, .md, .tex).
 
 An HTML report is one file.  Markdown and LaTeX reports put their figures (PNG) and the animation
-(GIF) in a folder beside the document, ``<name>_files/``, and refer to them by relative path.
+(GIF) in a folder beside the document, ``<name>_files/``, and refer to them by relative path; the
+names of those files are plain (letters, digits, ``. _ -``: no folder, no ``..``).
 """
 
 from __future__ import annotations
@@ -9,6 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import InputError
+from ..textsafe import safe_filename
 from .document import Animation, Document, Figure, build_document
 
 FORMATS = {".html": "html", ".htm": "html", ".md": "markdown", ".markdown": "markdown", ".tex": "latex"}
@@ -45,17 +47,19 @@ def write_document(doc: Document, path) -> Path:
     fmt = format_of(path)
     files: dict = {}
     if fmt != "html":
-        assets = path.with_name(path.stem + "_files")
+        assets = path.with_name(safe_filename(path.stem, "report") + "_files")     # named in the document: plain
         for sec in doc.sections:
             for b in sec.blocks:
                 if isinstance(b, Figure):
                     assets.mkdir(parents=True, exist_ok=True)
-                    (assets / f"{b.key}.png").write_bytes(b.png)
-                    files[b.key] = f"{assets.name}/{b.key}.png"
+                    name = safe_filename(b.key, "figure") + ".png"
+                    (assets / name).write_bytes(b.png)
+                    files[b.key] = f"{assets.name}/{name}"
                 elif isinstance(b, Animation) and b.gif:
                     assets.mkdir(parents=True, exist_ok=True)
-                    (assets / f"animation-{b.key}.gif").write_bytes(b.gif)
-                    files[f"animation-{b.key}"] = f"{assets.name}/animation-{b.key}.gif"
+                    name = "animation-" + safe_filename(b.key, "motion") + ".gif"
+                    (assets / name).write_bytes(b.gif)
+                    files[f"animation-{b.key}"] = f"{assets.name}/{name}"
     try:
         path.write_text(render(doc, fmt, files), encoding="utf-8")
     except OSError as exc:
