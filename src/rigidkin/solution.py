@@ -35,7 +35,8 @@ from sympy.physics.vector import dynamicsymbols
 
 from . import algebra
 from .errors import ConstraintError, RegimeError, RigidkinError
-from .kinematics import linear_form, solve_square
+from .kinematics import linear_form
+from .linear import solve_linear
 from .mode import ModeSetup
 from .printing import latex, text
 from .trace import Trace
@@ -135,6 +136,14 @@ class Solution:
         from .laws.crosscheck import cross_check
 
         return cross_check(self, laws=laws, expect=expect, dimensions=dimensions)
+
+    def reactions_at(self, state: Mapping, values: Mapping | None = None, regime: Regime | None = None) -> dict:
+        """Every reaction as a number at ``state`` ({q: value, q̇: value}; parameters from ``values`` or
+        their declared values): finite wherever the physics is (a numeric solve of the balance equations
+        where a closed form has 0/0)."""
+        from .evaluation import reactions_at
+
+        return reactions_at(self, state, values, regime)
 
     def regime(self, index: int = 0) -> Regime:
         return self.regimes[index]
@@ -296,13 +305,12 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
     dof_note = (f"{len(red_.independent) + len(red_.dependent)} coordinates and {len(red_.relating)} "
                 f"rate-relating constraint rows leave {red_.dof} degree(s) of freedom; the constraints "
                 f"bring the reactions {', '.join(map(str, setup.reactions)) or 'none'}.")
-    keep = _determinacy(A, b, unknowns, [e.label for e in equations], dof_note)
+    _determinacy(A, b, unknowns, [e.label for e in equations], dof_note)
     raw_rows = _projected_rows(setup, balances, sign_map)
     working = _working_reactions(raw_rows, reactions)
     accel_syms = [q.diff(t, 2) for q in red.independent]
     if working:
-        x = solve_square(A.extract(keep, list(range(len(unknowns)))), -b.extract(keep, [0]),
-                         simplify=kin.simplify_expr)
+        x = solve_linear(A, -b, simplify=kin.simplify_expr)
         solved = dict(zip(unknowns, x))
         accels = {q: solved[q.diff(t, 2)] for q in red.independent}
         react = {str(r): solved[r] for r in reactions}
@@ -316,7 +324,7 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
         eom, M, f = _rows_to_eom(setup, raw_rows, reactions, {}, working)
 
         def accelerations():
-            return dict(zip(red.independent, solve_square(M, f, simplify=kin.simplify_expr)))
+            return dict(zip(red.independent, solve_linear(M, f, simplify=kin.simplify_expr, symmetric=True)))
 
         def solved_reactions():
             if not reactions:          # a free body: no reaction to solve for
@@ -325,9 +333,8 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
             rhs = -b - A.extract(list(range(A.rows)), list(range(len(accel_syms)))) * sp.Matrix(
                 [acc[q] for q in red.independent]) if accel_syms else -b      # 0 DOF: statics
             Al = A.extract(list(range(A.rows)), list(range(len(accel_syms), len(unknowns))))
-            rows = _determinacy(Al, rhs, reactions, [e.label for e in equations], dof_note)
-            lam = solve_square(Al.extract(rows, list(range(len(reactions)))), rhs.extract(rows, [0]),
-                               simplify=kin.simplify_expr)
+            _determinacy(Al, rhs, reactions, [e.label for e in equations], dof_note)
+            lam = solve_linear(Al, rhs, simplify=kin.simplify_expr)
             out = {str(r): v for r, v in zip(reactions, lam)}
             out.update({str(r): sp.Integer(0) for r in missing})
             return out

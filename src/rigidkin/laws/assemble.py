@@ -15,7 +15,8 @@ from sympy.physics.vector import dynamicsymbols
 
 from .. import algebra
 from ..errors import ConstraintError, ModelError
-from ..kinematics import linear_form, solve_square
+from ..kinematics import linear_form
+from ..linear import solve_linear
 from ..mode import ModeSetup
 from ..printing import text
 from ..solution import LazyMap, Regime, Solution
@@ -35,7 +36,7 @@ def _accelerations(M, f, coords, kin, method, where):
     """q̈ = M⁻¹ f: at once for up to two coordinates, else when first asked (a LazyMap)."""
     def solve():
         try:
-            return dict(zip(coords, solve_square(M, f, simplify=kin.simplify_expr)))
+            return dict(zip(coords, solve_linear(M, f, simplify=kin.simplify_expr, symmetric=True)))
         except ZeroDivisionError:
             raise ConstraintError(f"the equations of {method} are singular in the accelerations.",
                                   where=where) from None
