@@ -63,6 +63,7 @@ def test_simulate_input_errors_are_one_paragraph(capsys, argv, words):
 def test_simulate_reports_where_the_model_cannot_follow(capsys):
     code, out, err = run(capsys, "simulate", "disk-in-track", "--t-end", "3", "--initial", "theta=0",
                          f"dot(theta)={float(np.sqrt(2 * 9.81 * 0.9) / 0.9)!r}", "--json")
-    assert code == 0
+    assert code == 3                    # stopped early: the model cannot go on (reason and state given)
     d = json.loads(out)
     assert d["status"] == "stopped" and "no coordinate that lets P leave its surface" in d["message"]
+    assert d["reached_end"] is False and d["stop_reason"] == "mode-unavailable"

@@ -78,14 +78,16 @@ def test_slip_that_cannot_stick_reverses():
     assert res.status == "completed"
 
 
-def test_block_that_would_stick_stops_the_simulation_with_a_reason():
-    # µ > tan β: the block comes to rest and stays, but a particle that sticks has no degree of freedom
+def test_block_that_sticks_comes_to_rest_and_stays():
+    # µ > tan β: the block comes to rest and stays (a mode with no degree of freedom: at rest)
     res = simulate(sliding_block(0.9, 0.5, 3.0), 2.0)
-    assert res.status == "stopped"
-    assert res.events[-1].kind == "stop"
-    assert "incline" in res.message
+    assert res.status == "completed"
+    (ev,) = res.events
+    assert ev.kind == "sticks"
     t_up = 3.0 / (G * (np.sin(0.5) + 0.9 * np.cos(0.5)))
-    assert abs(res.t_final - t_up) < 1e-10
+    assert abs(ev.t - t_up) < 1e-10
+    after = res.segment == 1
+    assert np.all(res["dot(s)"][after] == 0.0) and np.ptp(res["s"][after]) == 0.0
 
 
 def test_contact_without_a_coordinate_to_open_stops_where_its_reaction_vanishes():

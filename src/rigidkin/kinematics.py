@@ -326,7 +326,7 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
             where=", ".join(sorted({r.constraint for r in redundant})),
             hint=f"{len(coords)} coordinates with {rank} independent constraint rows leave "
                  f"{len(coords) - rank} degrees of freedom; remove the redundant constraint or make it open.")
-    if rank >= len(coords):
+    if rank > len(coords):
         raise ConstraintError(
             f"the constraints {', '.join(sorted({r.constraint for r in relating}))} fix all "
             f"{len(coords)} coordinates: no degree of freedom remains (the system is a structure).",
@@ -353,7 +353,7 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
     ind = [q for i, q in enumerate(coords) if i not in dep_idx]
     ind_idx = [i for i in range(len(coords)) if i not in dep_idx]
     Ad = A[:, dep_idx]
-    rhs = -(A[:, ind_idx] * sp.Matrix([rates[i] for i in ind_idx]) + b)
+    rhs = -(A[:, ind_idx] * sp.Matrix([rates[i] for i in ind_idx]) + b) if ind_idx else -b   # 0 DOF: at rest
     # square subsystem: choose rows (rank == len(relating) here)
     sol = solve_square(Ad, rhs)
     rate_map = {q.diff(t): sol[k] for k, q in enumerate(dep)}
@@ -411,7 +411,7 @@ def _integrate(system, kin, red: Reduction, relating, trace):
     from_rates = set()
     ind = list(red.independent)
     for q in dep:
-        if q in solved:
+        if q in solved or not ind:       # at rest (no degree of freedom): q_d stays where the state has it
             continue
         rhs = red.rate_map[q.diff(t)].xreplace({**{k.diff(t): 0 for k in solved}, **solved})
         rhs = kin.simplify_expr(rhs)

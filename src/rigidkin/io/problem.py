@@ -39,6 +39,7 @@ from .expressions import (
     slip,
 )
 from .locate import Locator, dotted
+from .prescan import check_tree, prescan
 
 #: Larger files are refused before they are read (a problem description is a few kilobytes).
 MAX_FILE_BYTES = 1_000_000
@@ -90,13 +91,20 @@ def read_toml(path: Path | str) -> tuple[str, dict]:
                          hint="Save it as UTF-8.") from None
     except OSError as exc:
         raise InputError(f"cannot read the problem file ({exc.strerror or exc}).", where=str(path)) from None
+    return text, _parse_toml(text, str(path))
+
+
+def _parse_toml(text: str, filename: str) -> dict:
+    """TOML text → data, its structure bounded before and after ``tomllib`` reads it."""
+    prescan(text, filename)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise _toml_error(exc, str(path)) from None
+        raise _toml_error(exc, filename) from None
     except (RecursionError, MemoryError):
-        raise InputError("the TOML is nested too deeply to read.", where=str(path)) from None
-    return text, data
+        raise InputError("the TOML is nested too deeply to read.", where=filename) from None
+    check_tree(data, filename)
+    return data
 
 
 def _toml_error(exc: Exception, filename: str) -> InputError:
@@ -486,6 +494,15 @@ class _Builder:
 
     # constraints ----------------------------------------------------------------------------------------
     def friction(self, value, path):
+        if isinstance(value, S.FrictionCoefficients):   # { static = µs, kinetic = µk }: one alone means both
+            if value.static is None and value.kinetic is None:
+                raise InputError("a friction table needs 'static' (µs), 'kinetic' (µk) or both.",
+                                 where=self.where(*path), hint="Write friction = { static = 0.5, kinetic = 0.4 }.")
+            k = self.scalar(value.kinetic if value.kinetic is not None else value.static, path + ("kinetic",))
+            st = self.scalar(value.static if value.static is not None else value.kinetic, path + ("static",))
+            if k == 0 and st == 0:
+                return "smooth"
+            return {"static": st, "kinetic": k}
         if isinstance(value, str) and value.strip() in _FRICTION_WORDS:
             return value.strip()
         if isinstance(value, str) and value.strip().isidentifier() and value.strip() not in self.scope.names:
@@ -745,13 +762,7 @@ def parse_problem(text: str, filename: str = "<problem>") -> tuple[System, Probl
     if len(text) > MAX_FILE_BYTES:
         raise InputError(f"the problem text is {len(text)} characters long (at most {MAX_FILE_BYTES}).",
                          where=filename)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise _toml_error(exc, filename) from None
-    except (RecursionError, MemoryError):
-        raise InputError("the TOML is nested too deeply to read.", where=filename) from None
-    return build_problem(data, text, Path(filename))
+    return build_problem(_parse_toml(text, filename), text, Path(filename))
 
 
 def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") -> tuple[System, ProblemSpec]:

@@ -154,13 +154,24 @@ class PinSpec(Strict):
     description: str = ""
 
 
+class FrictionCoefficients(Strict):
+    """Coulomb friction with static and kinetic coefficients: ``friction = { static = "mu_s", kinetic = "mu_k" }``."""
+
+    static: Expr | None = None
+    kinetic: Expr | None = None
+
+
+#: ``"smooth"``, ``"rolling"``, a coefficient µ (static and kinetic alike), or a FrictionCoefficients table.
+Friction = FrictionCoefficients | Expr
+
+
 class ContactSpec(Strict):
     type: Literal["contact"]
     body: Name
     surface: SurfaceSpec
     centre: Name | None = None
     radius: Expr = 0
-    friction: Expr = "smooth"
+    friction: Friction = "smooth"
     unilateral: bool = True
     normal_name: Name | None = None
     friction_name: Name | None = None
@@ -174,7 +185,7 @@ class CollarSpec(Strict):
     through: Name | None = None
     point: Name | None = None
     track_body: Name | None = None
-    friction: Expr = "smooth"
+    friction: Friction = "smooth"
     normal_name: Name | None = None
     couple_name: Name | None = None
     description: str = ""
@@ -189,7 +200,7 @@ class DiskContactSpec(Strict):
     axis: Expr
     radius: Expr
     centre: Name | None = None
-    friction: Expr = "smooth"
+    friction: Friction = "smooth"
     unilateral: bool = True
     normal_name: Name | None = None
     friction_name: Name | None = None

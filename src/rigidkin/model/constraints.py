@@ -26,9 +26,38 @@ ROLLING = "rolling"
 
 @dataclass(frozen=True)
 class Coulomb:
-    """Coulomb friction with coefficient ``mu`` (sliding friction µ|N|; sticks while |F| ≤ µN)."""
+    """Coulomb friction: kinetic coefficient ``mu`` (µk) and static coefficient ``mu_s`` (µs).
+
+    A contact sticks while the friction it needs satisfies |F| ≤ µs N; while it slides the friction
+    is µk N against the slip.  A single coefficient (``mu_s`` None) means both: ``Coulomb(0.3)``.
+    """
 
     mu: sp.Expr
+    mu_s: sp.Expr | None = None
+
+    def __post_init__(self):
+        if self.mu_s is not None and sp.sympify(self.mu_s) == sp.sympify(self.mu):
+            object.__setattr__(self, "mu_s", None)
+        a, b = sp.sympify(self.static), sp.sympify(self.mu)
+        if a.is_number and b.is_number and bool(a < b):
+            raise ModelError(f"the static coefficient of friction µs = {a} is smaller than the kinetic one "
+                             f"µk = {b}; a contact that starts to slip would need less friction than it had.",
+                             where="friction", hint="Give µs ≥ µk (a single µ means both).")
+
+    @property
+    def static(self) -> sp.Expr:
+        """µs: sticking holds while |F| ≤ µs N."""
+        return self.mu if self.mu_s is None else self.mu_s
+
+    @property
+    def kinetic(self) -> sp.Expr:
+        """µk: the sliding friction is µk N against the slip."""
+        return self.mu
+
+    @property
+    def two(self) -> bool:
+        """Whether static and kinetic coefficients differ (µs given apart from µk)."""
+        return self.mu_s is not None
 
 
 @dataclass(frozen=True, eq=False)

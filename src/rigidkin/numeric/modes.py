@@ -101,6 +101,7 @@ class ModeModel:
     residual_names: list
     friction_names: list
     conservative: bool
+    steady: frozenset = frozenset()   # watches that cannot change: a mode at rest, no explicit time
 
     @property
     def regime(self):
@@ -274,7 +275,7 @@ class Hybrid:
             if c.unilateral:
                 watch(Watch("opens", name, f"contact {name} opens", -1, quantity=str(c.N)), R(c.N))
             if st == STICK and isinstance(c.friction, Coulomb):
-                mu, N = c.friction.mu, R(c.N)
+                mu, N = c.friction.static, R(c.N)       # sticking holds while |F| ≤ µs N
                 if kin.planar:
                     F = R(c.F)
                     watch(Watch("slips", name, f"contact {name} starts to slip", -1, -1, f"µ{c.N} − {c.F}"),
@@ -315,10 +316,25 @@ class Hybrid:
         for name, c in self.contacts.items():
             if isinstance(c.friction, Coulomb):
                 friction_names.append(f"mu*{c.N}")
-                fexprs.append(c.friction.mu * R(c.N) if mode[name] != OPEN else sp.Integer(0))
+                mu = c.friction.static if mode[name] == STICK else c.friction.kinetic
+                fexprs.append(mu * R(c.N) if mode[name] != OPEN else sp.Integer(0))
         fns = RegimeFunctions(sol, k, lay, [P, *wexprs, *rexprs, T, U, *fexprs])
         return ModeModel(self.system, mode, k, sol, lay, fns, watches, conditions, residual_names,
-                         friction_names, conservative)
+                         friction_names, conservative, self._steady(sol, reg, wexprs))
+
+    def _steady(self, sol, reg, wexprs) -> frozenset:
+        """In a mode at rest (no degree of freedom) the state does not change, so a watch that does not
+        depend on time explicitly (through a load such as a force growing with t) keeps its value: it is
+        no event, even where it sits exactly at its limit (tan β = µs: the block stays)."""
+        if sol.coordinates:
+            return frozenset()
+        react = {sp.Symbol(k, real=True): v for k, v in reg.reactions.items()}
+        out = set()
+        for i, e in enumerate(wexprs):
+            full = self.layout.to_plain(sp.sympify(e).xreplace(react))
+            if not full.has(t):
+                out.add(i)
+        return frozenset(out)
 
     # contact quantities in the full state ----------------------------------------------------------
     def contact_functions(self, name: str):
@@ -528,7 +544,7 @@ class Hybrid:
                 if mode[n] != STICK or not isinstance(c.friction, Coulomb):
                     continue
                 N, F = react.get(str(c.N), 0.0), react.get(str(c.F), 0.0)
-                mu = float(self._param_value(c.friction.mu, p))
+                mu = float(self._param_value(c.friction.static, p))
                 if abs(F) > mu * abs(N) + force_tol * fscale:
                     if not self.kin.planar:
                         raise SimulationError(f"at t = {t_:.10g} contact {n} needs more friction than µN to "

@@ -14,6 +14,7 @@ import csv
 import io
 import json
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -89,6 +90,16 @@ class SimulationResult:
     warnings: list = field(default_factory=list)
     kinds: dict = field(default_factory=dict)
     limits: dict = field(default_factory=dict)   # "mu*N": the friction limit µN of each Coulomb contact
+    #: why the run ended: "completed" (reached the end time), or why it stopped early: "mode-unavailable"
+    #: (the model cannot represent the next mode), "no-consistent-mode" (the contact problem has no
+    #: solution, Painlevé), "ambiguous" (several), "accumulation" (events pile up), "max-events",
+    #: "relation-mismatch" (a mode entered with another constant of integration)
+    stop_reason: str = "completed"
+
+    @property
+    def reached_end(self) -> bool:
+        """Whether the simulation reached its end time (otherwise ``stop_reason`` and ``message`` say why)."""
+        return self.status == "completed"
 
     # access ------------------------------------------------------------------------------------
     @property
@@ -141,6 +152,7 @@ class SimulationResult:
     def to_dict(self) -> dict:
         """``{"events": [...], "final_state", "energy_drift", ...}`` (what ``--json`` prints)."""
         return {"system": self.system, "status": self.status, "message": self.message,
+                "reached_end": self.reached_end, "stop_reason": self.stop_reason,
                 "t_final": self.t_final, "events": [e.to_dict() for e in self.events],
                 "final_state": self.final_state, "energy_drift": self.energy_drift,
                 "energy_balance": self.energy_balance, "max_constraint_residual": self.max_residual,
@@ -159,20 +171,48 @@ class SimulationResult:
         return cols
 
     def to_csv(self, path=None) -> str:
-        """The histories as CSV (t, mode, coordinates, rates, reactions, T, U, E, W); written to ``path`` if given."""
-        cols = self.columns()
+        """The histories as CSV (t, mode, coordinates, rates, reactions, T, U, E, W); written to ``path`` if given.
+
+        Text cells (the mode) are made safe for spreadsheets (no formulas).  For long histories
+        :meth:`write_csv` streams the rows to the file instead of building the text first.
+        """
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        names = list(cols)
-        w.writerow([names[0], "mode", *names[1:]])
-        for j in range(len(self.t)):
-            w.writerow([repr(float(cols["t"][j])), self.segments[int(self.segment[j])].description,
-                        *(repr(float(cols[k][j])) for k in names[1:])])
+        for chunk in self._csv_chunks():
+            buf.write(chunk)
         text = buf.getvalue()
         if path is not None:
-            with open(path, "w", encoding="utf-8", newline="") as f:
-                f.write(text)
+            from ..outfile import write_text
+
+            write_text(path, text, "the histories")
         return text
+
+    def write_csv(self, path) -> Path:
+        """Write the histories as CSV to ``path``, chunk by chunk, whole or not at all (an OutputError says why)."""
+        from ..outfile import writing
+
+        with writing(path, "the histories") as f:
+            for chunk in self._csv_chunks():
+                f.write(chunk)
+        return Path(path)
+
+    def _csv_chunks(self, rows: int = 20_000):
+        from ..textsafe import safe_csv_cell
+
+        cols = self.columns()
+        names = list(cols)
+        modes = [safe_csv_cell(s.description) for s in self.segments]
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow([safe_csv_cell(n) for n in (names[0], "mode", *names[1:])])
+        for start in range(0, len(self.t), rows):
+            for j in range(start, min(start + rows, len(self.t))):
+                w.writerow([repr(float(cols["t"][j])), modes[int(self.segment[j])],
+                            *(repr(float(cols[k][j])) for k in names[1:])])
+            yield buf.getvalue()
+            buf.seek(0)
+            buf.truncate()
+        if buf.tell():
+            yield buf.getvalue()
 
     def plot(self, path=None, title: str | None = None):
         """A figure of coordinates, rates, reactions and energy with the events marked; saved to ``path``."""

@@ -124,16 +124,20 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
             y[i] = v
         try:
             rel_slots, rel_fn, rate_slots, rate_fn = hyb.relation_functions(cand, integrated=True)
+            at_rest = not hyb.solution(cand).coordinates
         except ModeUnavailable:
-            # the candidate mode cannot be derived (too many closed contacts): open the unilateral
-            # contacts the given configuration already separates, then try again
+            rel_slots, at_rest = None, True
+        if at_rest:
+            # the candidate mode cannot be derived or leaves no degree of freedom (too many closed
+            # contacts): open the unilateral contacts the given configuration already separates first
             apart = [nm for nm, c in hyb.contacts.items() if cand[nm] != OPEN and c.unilateral
                      and hyb.contact_state(nm, t0, y, p)[0] > 1e-9 * max(1.0, float(np.max(np.abs(y))))]
-            if not apart:
-                raise
-            for nm in apart:
-                cand[nm] = OPEN
-            continue
+            if apart:
+                for nm in apart:
+                    cand[nm] = OPEN
+                continue
+            if rel_slots is None:
+                hyb.relation_functions(cand, integrated=True)       # ModeUnavailable: the model's reason
         for s, v in zip(rel_slots, rel_fn(t0, *y, *p) if rel_slots else ()):
             if s not in given:
                 y[s] = float(v)
@@ -216,7 +220,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     segments: list[Segment] = []
     events: list[Event] = []
     notes: list[str] = []
-    status, message = "completed", f"reached t = {t1:g}"
+    status, message, reason = "completed", f"reached t = {t1:g}", "completed"
     ph, ph_start = 0, t0
     t_now = t0
     zero_steps = 0
@@ -226,7 +230,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         model = hyb.model(mode_, k)
         mismatch = hyb.relation_mismatch(mode_, t_now, y, p)
         if mismatch:
-            status = "stopped"
+            status, reason = "stopped", "relation-mismatch"
             message = (f"at t = {t_now:.10g} the mode ({describe_mode(system, mode_)}) was derived with the "
                        "dependent coordinates integrated from the declared initial configuration, and the state "
                        "differs from that by " + ", ".join(f"{nm}: {d:.4g}" for nm, d in mismatch)
@@ -237,7 +241,11 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         rhs = RHS(model.rates, lay, p, label=system.name, progress=report)
         fns = []
         zero = 1e-9 * max(1.0, float(np.max(np.abs(y[:2 * n]))))
+        watch_of = []                    # the watch behind each event function
         for i, w in enumerate(model.watches):
+            if i in model.steady:        # at rest, and the watch has no explicit time: it cannot change
+                continue
+            watch_of.append(i)
             fns.append(_event(lambda tt, yy, i=i, p=p, model=model: model.watch_values(tt, yy, p)[i], w.direction,
                               t_now, y, zero))
         phase_slot = None
@@ -274,7 +282,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         before = lay.as_dict(y)
         zero_steps = zero_steps + 1 if t_now - t_prev <= 1e-12 * max(1.0, abs(t_now)) else 0
         if zero_steps > 25 or len(events) >= max_events:
-            status = "stopped"
+            status, reason = "stopped", ("accumulation" if zero_steps > 25 else "max-events")
             message = (f"the mode keeps switching at t = {t_now:.10g} (chattering or an accumulation of events)"
                        if zero_steps > 25 else f"stopped after {max_events} events (max_events)")
             break
@@ -285,7 +293,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
             try:
                 mode_, k, nts = hyb.settle(mode_, t_now, y, p_new)
             except ModeUnavailable as exc:
-                status, message = "stopped", str(exc)
+                status, message, reason = "stopped", str(exc), "mode-unavailable"
                 events.append(Event(f"phase {ph} ends", "stop", "", t_now, before, before,
                                     model.description, "", str(exc)))
                 break
@@ -296,11 +304,13 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
             events.append(Event(name, "phase", "", t_now, before, lay.as_dict(y), model.description,
                                 hyb.model(mode_, k).description, "; ".join(nts)))
             continue
-        w = model.watches[i]
+        w = model.watches[watch_of[i]]
         try:
             mode_, k, y, ev = _transition(hyb, model, w, t_now, y, p, e_of, rest_speed)
         except (ModeUnavailable, SimulationError) as exc:
             status = "stopped"
+            reason = getattr(exc, "reason", None) or ("mode-unavailable" if isinstance(exc, ModeUnavailable)
+                                                      else "no-consistent-mode")
             reason = exc.message[0].lower() + exc.message[1:]
             message = f"{w.label} at t = {t_now:.10g}, but {reason}" + (f" {exc.hint}" if exc.hint else "")
             events.append(Event(f"{w.label}: the simulation stops", "stop", w.name, t_now, before, before,
@@ -311,6 +321,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         progress(t_now, t1)
     result = build_result(system, lay, segments, events, status, message, n_points=n_points,
                           energy_tol=energy_tol, residual_tol=residual_tol, notes=notes)
+    result.stop_reason = reason
     for wmsg in result.warnings:
         warnings.warn(wmsg, RuntimeWarning, stacklevel=2)
     return result
@@ -320,7 +331,8 @@ def _event(fn, direction, t_start, y_start, zero):
     """A terminal solve_ivp event.  A watch that starts at zero (the event that began this mode, or
     one that coincides with it) counts as lying on its untriggered side for the first 1e-10 of
     relative time while it stays within rounding of zero, so that the first crossing after it is
-    bracketed and found, and the start itself is never taken for a root."""
+    bracketed and found, and the start itself is never taken for a root.  (A watch that cannot
+    change in a mode at rest is no event at all: ``ModeModel.steady``.)"""
     nudge = direction != 0 and abs(fn(t_start, y_start)) <= zero
     window = 1e-10 * max(1.0, abs(t_start))
 
