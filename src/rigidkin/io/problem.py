@@ -39,7 +39,6 @@ from .expressions import (
     slip,
 )
 from .locate import Locator, dotted
-from .prescan import check_tree, prescan
 
 #: Larger files are refused before they are read (a problem description is a few kilobytes).
 MAX_FILE_BYTES = 1_000_000
@@ -91,20 +90,13 @@ def read_toml(path: Path | str) -> tuple[str, dict]:
                          hint="Save it as UTF-8.") from None
     except OSError as exc:
         raise InputError(f"cannot read the problem file ({exc.strerror or exc}).", where=str(path)) from None
-    return text, _parse_toml(text, str(path))
-
-
-def _parse_toml(text: str, filename: str) -> dict:
-    """TOML text → data, its structure bounded before and after ``tomllib`` reads it."""
-    prescan(text, filename)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise _toml_error(exc, filename) from None
+        raise _toml_error(exc, str(path)) from None
     except (RecursionError, MemoryError):
-        raise InputError("the TOML is nested too deeply to read.", where=filename) from None
-    check_tree(data, filename)
-    return data
+        raise InputError("the TOML is nested too deeply to read.", where=str(path)) from None
+    return text, data
 
 
 def _toml_error(exc: Exception, filename: str) -> InputError:
@@ -762,7 +754,13 @@ def parse_problem(text: str, filename: str = "<problem>") -> tuple[System, Probl
     if len(text) > MAX_FILE_BYTES:
         raise InputError(f"the problem text is {len(text)} characters long (at most {MAX_FILE_BYTES}).",
                          where=filename)
-    return build_problem(_parse_toml(text, filename), text, Path(filename))
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise _toml_error(exc, filename) from None
+    except (RecursionError, MemoryError):
+        raise InputError("the TOML is nested too deeply to read.", where=filename) from None
+    return build_problem(data, text, Path(filename))
 
 
 def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") -> tuple[System, ProblemSpec]:

@@ -17,7 +17,6 @@ from ..units import NAMED, ONE, Dimension, to_si, unit_dimension
 from . import constraints as C
 from . import loads as L
 from .bodies import Body
-from .checks import NONNEGATIVE, POSITIVE, check_identifier, require
 from .frames import Frame, make_reference_frame
 from .points import Point
 from .quantities import Coordinate, Parameter
@@ -78,7 +77,9 @@ class System:
 
     # names ---------------------------------------------------------------------------------------
     def _claim(self, name: str, kind: str, namespace: str = "symbol", owner: str | None = None) -> None:
-        check_identifier(name, kind, owner or f"{kind} {name}")
+        if not isinstance(name, str) or not name.isidentifier() or name.startswith("_"):
+            raise ModelError(f"'{name}' is not a valid name for a {kind}: use letters, digits and "
+                             "underscores, starting with a letter.", where=f"{kind} {name}")
         key = f"{namespace}:{name}"
         if key in self._names:
             of = f" of {owner}" if owner else ""
@@ -108,11 +109,7 @@ class System:
         else:
             dim = ONE
         si_unit = unit if unit is not None and str(unit).strip() not in ("", "1", "-") else None
-        val = None if value is None else to_si(value, si_unit, where, None if si_unit else dim)
-        if positive and val is not None and val <= 0:
-            raise ModelError(f"the value {value!r} of a positive parameter is {val:g}.", where=where,
-                             hint="Give a positive value, or declare the parameter with positive=False (in a "
-                                  "problem file: positive = false) if it may be zero or negative.")
+        val = None if value is None else to_si(value, si_unit, where)   # a number is in ``unit``
         sym = sp.Symbol(name, positive=True) if positive else sp.Symbol(name, real=True)
         self._claim(name, "parameter")
         self._parameters[name] = Parameter(name, sym, description, unit or "", dim, val)
@@ -133,8 +130,8 @@ class System:
         assumptions = {"positive": True} if positive else {"real": True}
         sym = dynamicsymbols(name, **assumptions)
         where = f"coordinate {name}"
-        q0 = None if initial is None else to_si(initial, None, f"{where}, initial value", dim)
-        u0 = None if rate is None else to_si(rate, None, f"{where}, initial rate", dim / NAMED["time"])
+        q0 = None if initial is None else to_si(initial, None, where)
+        u0 = None if rate is None else to_si(rate, None, where)
         self._coordinates[name] = Coordinate(name, sym, sense, kind, dim, q0, u0, description)
         return sym
 
@@ -267,7 +264,6 @@ class System:
             raise ModelError(f"shape must be one of rigidkin.shapes, not {shape!r}.", where=where)
         self._check_frame(frame, where)
         ref = self._check_point(at, where)
-        shape.check(self.parameter_values(), where)
         offset = shape.centre_offset(frame)
         if offset == Vector(0):
             centre = ref
@@ -292,8 +288,7 @@ class System:
                normal: Vector | None = None) -> Circle:
         """A circular (spherical in 3D) surface; the body touches it from ``inside`` or outside."""
         p = self._check_point(centre, f"circle {name}")
-        return Circle(p, self._value(radius, f"circle {name}", POSITIVE, "radius"), inside,
-                      self._check_body(body, name, True), name, normal)
+        return Circle(p, _expr(radius, f"circle {name}"), inside, self._check_body(body, name, True), name, normal)
 
     plane = line
     sphere = circle
@@ -335,9 +330,8 @@ class System:
         if not isinstance(surface, (Line, Circle)):
             raise ModelError("surface must be a line/plane or circle/sphere (System.line, System.circle).",
                              where=where)
-        fr = self._friction(friction, where)
-        con = C.Contact(name, body=b, centre=c, radius=self._value(radius, where, NONNEGATIVE, "radius"),
-                        surface=surface, friction=fr,
+        fr = _friction(friction, where)
+        con = C.Contact(name, body=b, centre=c, radius=_expr(radius, where), surface=surface, friction=fr,
                         unilateral=unilateral, normal_name=normal_name, friction_name=friction_name,
                         description=description)
         for sym in con.reactions():
@@ -355,9 +349,8 @@ class System:
         where = f"contact {name}"
         b = self._check_body(body, where)
         c = self._check_point(centre, where) if centre is not None else b.centre
-        con = DiskContact(name, body=b, centre=c, radius=self._value(radius, where, POSITIVE, "radius"),
-                          surface=surface, friction=self._friction(friction, where), unilateral=unilateral,
-                          normal_name=normal_name,
+        con = DiskContact(name, body=b, centre=c, radius=_expr(radius, where), surface=surface,
+                          friction=_friction(friction, where), unilateral=unilateral, normal_name=normal_name,
                           friction_name=friction_name, description=description,
                           axis=self._check_vector(axis, where))
         for sym in con.reactions():
@@ -374,7 +367,7 @@ class System:
         p = self._check_point(point, where) if point is not None else b.reference
         thr = self._check_point(through, where) if through is not None else self.origin
         con = C.Collar(name, body=b, point=p, through=thr, along=self._check_vector(along, where),
-                       track_body=self._check_body(track_body, where, True), friction=self._friction(friction, where),
+                       track_body=self._check_body(track_body, where, True), friction=_friction(friction, where),
                        normal_name=normal_name, couple_name=couple_name, description=description)
         for sym in con.reactions():
             self._claim(sym.name, "reaction", owner=f"collar {name}")
@@ -398,8 +391,7 @@ class System:
             if len(bodies) != len(pts):
                 raise ModelError(f"give one body (or None) for each of the {len(pts)} points.", where=where)
             bs = tuple(self._check_body(b, where, allow_none=True) for b in bodies)
-        con = C.Cable(name, points=pts, bodies=bs, length=self._value(length, where, POSITIVE, "length"),
-                      tension_name=tension_name,
+        con = C.Cable(name, points=pts, bodies=bs, length=_expr(length, where), tension_name=tension_name,
                       description=description)
         self._claim(con.T.name, "reaction", owner=f"cable {name}")
         return self._add_constraint(con)
@@ -421,19 +413,13 @@ class System:
     def gravity(self, g, direction: Vector | None = None, name: str = "gravity") -> None:
         """Uniform gravity of magnitude ``g`` along the unit vector ``direction`` (default −Ey)."""
         d = -self.inertial.y if direction is None else self._check_vector(direction, f"load {name}")
-        self._add_load(L.Gravity(name, g=self._value(g, f"load {name}", NONNEGATIVE, "gravitational acceleration"),
-                                 direction=d))
+        self._add_load(L.Gravity(name, g=_expr(g, f"load {name}"), direction=d))
 
-    def force(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "",
-              on=None) -> L.Force:
-        """A known force at ``point`` (of ``body``; default: the body the point is fixed in).
-
-        At a point that moves over the body (``on=body``, the same as ``body=``), the force acts on the
-        material point of the body momentarily there; its power uses that material point's velocity.
-        """
+    def force(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "") -> L.Force:
+        """A known force at ``point`` (of ``body``; default: the body the point is fixed in)."""
         where = f"force {name}"
         p = self._check_point(point, where)
-        return self._add_load(L.Force(name, body=self._body_of(p, on if on is not None else body, where), point=p,
+        return self._add_load(L.Force(name, body=self._body_of(p, body, where), point=p,
                                       vector=self._check_vector(vector, where), description=description))
 
     def torque(self, name: str, body, vector: Vector, reaction_body=None, description: str = "") -> L.Torque:
@@ -445,23 +431,14 @@ class System:
                                        description=description))
 
     def spring(self, name: str, point_a: Point | str, point_b: Point | str, stiffness, natural_length=0,
-               body_a=None, body_b=None, description: str = "", on_a=None, on_b=None) -> L.Spring:
-        """A linear spring between two points; ends not fixed in a body are anchored in the ground.
-
-        ``on_a``/``on_b``: the body whose material point momentarily at ``point_a``/``point_b`` the
-        spring pulls (for an end that moves over the body, such as the top of a rolling wheel).
-        """
+               body_a=None, body_b=None, description: str = "") -> L.Spring:
+        """A linear spring between two points; ends not fixed in a body are anchored in the ground."""
         where = f"spring {name}"
         pa, pb = self._check_point(point_a, where), self._check_point(point_b, where)
-        ba = self._body_of(pa, on_a if on_a is not None else body_a, where)
-        bb = self._check_body(on_b if on_b is not None else body_b, where, True) \
-            if (body_b is not None or on_b is not None) else pb.body
-        ref = self.inertial.ref
-        ma = L.check_end(name, "spring", pa, ba, on_a is not None, ref)
-        mb = L.check_end(name, "spring", pb, bb, on_b is not None, ref)
-        return self._add_load(L.Spring(name, point_a=pa, body_a=ba, point_b=pb, body_b=bb, moving_a=ma, moving_b=mb,
-                                       stiffness=self._value(stiffness, where, NONNEGATIVE, "stiffness"),
-                                       natural_length=self._value(natural_length, where, NONNEGATIVE, "natural length"),
+        ba = self._body_of(pa, body_a, where)
+        bb = self._check_body(body_b, where, True) if body_b is not None else pb.body
+        return self._add_load(L.Spring(name, point_a=pa, body_a=ba, point_b=pb, body_b=bb,
+                                       stiffness=_expr(stiffness, where), natural_length=_expr(natural_length, where),
                                        description=description))
 
     def torsional_spring(self, name: str, body_a, stiffness, angle, natural_angle=0, body_b=None,
@@ -470,36 +447,25 @@ class System:
         where = f"torsional spring {name}"
         return self._add_load(L.TorsionalSpring(
             name, body_a=self._check_body(body_a, where), body_b=self._check_body(body_b, where, True),
-            stiffness=self._value(stiffness, where, NONNEGATIVE, "stiffness"), angle=_expr(angle, where),
-            natural_angle=_expr(natural_angle, where),
+            stiffness=_expr(stiffness, where), angle=_expr(angle, where), natural_angle=_expr(natural_angle, where),
             axis=self.inertial.z if axis is None else self._check_vector(axis, where), description=description))
 
     def damper(self, name: str, point_a: Point | str, law, along: Vector | None = None,
-               point_b: Point | str | None = None, body_a=None, body_b=None, description: str = "",
-               on_a=None, on_b=None) -> L.Damper:
-        """A damper of any force law f(v) (``law`` in the symbol ``rigidkin.v`` or a callable).
-
-        ``on_a``/``on_b`` as for :meth:`spring`: v then uses the material velocity of that body there.
-        """
+               point_b: Point | str | None = None, body_a=None, body_b=None, description: str = "") -> L.Damper:
+        """A damper of any force law f(v) (``law`` in the symbol ``rigidkin.v`` or a callable)."""
         where = f"damper {name}"
         pa = self._check_point(point_a, where)
         pb = self._check_point(point_b, where) if point_b is not None else None
-        ob = on_b if on_b is not None else body_b
-        bb = self._check_body(ob, where, True) if ob is not None else (pb.body if pb else None)
-        ba = self._body_of(pa, on_a if on_a is not None else body_a, where)
-        ref = self.inertial.ref
-        ma = L.check_end(name, "damper", pa, ba, on_a is not None, ref)
-        mb = pb is not None and L.check_end(name, "damper", pb, bb, on_b is not None, ref)
-        return self._add_load(L.Damper(name, point_a=pa, body_a=ba, law=law,
+        bb = self._check_body(body_b, where, True) if body_b is not None else (pb.body if pb else None)
+        return self._add_load(L.Damper(name, point_a=pa, body_a=self._body_of(pa, body_a, where), law=law,
                                        along=None if along is None else self._check_vector(along, where),
-                                       point_b=pb, body_b=bb, moving_a=ma, moving_b=mb, description=description))
+                                       point_b=pb, body_b=bb, description=description))
 
-    def impulse(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "",
-                on=None) -> L.Impulse:
-        """An impulse F̂ applied at ``point`` (used by the impulse–momentum law); ``on`` as for :meth:`force`."""
+    def impulse(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "") -> L.Impulse:
+        """An impulse F̂ applied at ``point`` (used by the impulse–momentum law)."""
         where = f"impulse {name}"
         p = self._check_point(point, where)
-        return self._add_load(L.Impulse(name, body=self._body_of(p, on if on is not None else body, where), point=p,
+        return self._add_load(L.Impulse(name, body=self._body_of(p, body, where), point=p,
                                         vector=self._check_vector(vector, where), description=description))
 
     def friction(self, name: str, body, centre: Point | str, normal: Vector, mu, normal_force, radius=0,
@@ -509,23 +475,10 @@ class System:
         where = f"friction {name}"
         return self._add_load(L.SlidingFriction(
             name, body=self._check_body(body, where), centre=self._check_point(centre, where),
-            radius=self._value(radius, where, NONNEGATIVE, "radius"), normal=self._check_vector(normal, where),
-            mu=self._value(mu, where, NONNEGATIVE, "friction coefficient µ"),
+            radius=_expr(radius, where), normal=self._check_vector(normal, where), mu=_expr(mu, where),
             normal_force=_expr(normal_force, where), against_body=self._check_body(against_body, where, True),
             against_point=self._check_point(against_point, where) if against_point is not None else None,
             description=description))
-
-    def _value(self, value, where: str, rule: str, what: str) -> sp.Expr:
-        """A number or expression that must obey ``rule`` (with the parameters' numeric values put in)."""
-        return require(_expr(value, where), rule, what, where, self.parameter_values())
-
-    def _friction(self, friction, where):
-        fr = _friction(friction, where)
-        if isinstance(fr, C.Coulomb):
-            for v in (fr.mu, fr.mu_s):
-                if v is not None:
-                    require(v, NONNEGATIVE, "friction coefficient µ", where, self.parameter_values())
-        return fr
 
     # solving -------------------------------------------------------------------------------------
     def solve(self, method: str = "newton-euler", mode: dict[str, str] | None = None,
