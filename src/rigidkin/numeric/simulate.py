@@ -220,7 +220,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     segments: list[Segment] = []
     events: list[Event] = []
     notes: list[str] = []
-    status, message, reason = "completed", f"reached t = {t1:g}", "completed"
+    status, message, stop = "completed", f"reached t = {t1:g}", "completed"
     ph, ph_start = 0, t0
     t_now = t0
     zero_steps = 0
@@ -230,7 +230,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         model = hyb.model(mode_, k)
         mismatch = hyb.relation_mismatch(mode_, t_now, y, p)
         if mismatch:
-            status, reason = "stopped", "relation-mismatch"
+            status, stop = "stopped", "relation-mismatch"
             message = (f"at t = {t_now:.10g} the mode ({describe_mode(system, mode_)}) was derived with the "
                        "dependent coordinates integrated from the declared initial configuration, and the state "
                        "differs from that by " + ", ".join(f"{nm}: {d:.4g}" for nm, d in mismatch)
@@ -282,7 +282,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         before = lay.as_dict(y)
         zero_steps = zero_steps + 1 if t_now - t_prev <= 1e-12 * max(1.0, abs(t_now)) else 0
         if zero_steps > 25 or len(events) >= max_events:
-            status, reason = "stopped", ("accumulation" if zero_steps > 25 else "max-events")
+            status, stop = "stopped", ("accumulation" if zero_steps > 25 else "max-events")
             message = (f"the mode keeps switching at t = {t_now:.10g} (chattering or an accumulation of events)"
                        if zero_steps > 25 else f"stopped after {max_events} events (max_events)")
             break
@@ -293,7 +293,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
             try:
                 mode_, k, nts = hyb.settle(mode_, t_now, y, p_new)
             except ModeUnavailable as exc:
-                status, message, reason = "stopped", str(exc), "mode-unavailable"
+                status, message, stop = "stopped", str(exc), "mode-unavailable"
                 events.append(Event(f"phase {ph} ends", "stop", "", t_now, before, before,
                                     model.description, "", str(exc)))
                 break
@@ -309,7 +309,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
             mode_, k, y, ev = _transition(hyb, model, w, t_now, y, p, e_of, rest_speed)
         except (ModeUnavailable, SimulationError) as exc:
             status = "stopped"
-            reason = getattr(exc, "reason", None) or ("mode-unavailable" if isinstance(exc, ModeUnavailable)
+            stop = getattr(exc, "stop_reason", None) or ("mode-unavailable" if isinstance(exc, ModeUnavailable)
                                                       else "no-consistent-mode")
             reason = exc.message[0].lower() + exc.message[1:]
             message = f"{w.label} at t = {t_now:.10g}, but {reason}" + (f" {exc.hint}" if exc.hint else "")
@@ -321,7 +321,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         progress(t_now, t1)
     result = build_result(system, lay, segments, events, status, message, n_points=n_points,
                           energy_tol=energy_tol, residual_tol=residual_tol, notes=notes)
-    result.stop_reason = reason
+    result.stop_reason = stop
     for wmsg in result.warnings:
         warnings.warn(wmsg, RuntimeWarning, stacklevel=2)
     return result
