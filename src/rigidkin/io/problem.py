@@ -39,6 +39,7 @@ from .expressions import (
     slip,
 )
 from .locate import Locator, dotted
+from .prescan import check_tree, prescan
 
 #: Larger files are refused before they are read (a problem description is a few kilobytes).
 MAX_FILE_BYTES = 1_000_000
@@ -90,13 +91,20 @@ def read_toml(path: Path | str) -> tuple[str, dict]:
                          hint="Save it as UTF-8.") from None
     except OSError as exc:
         raise InputError(f"cannot read the problem file ({exc.strerror or exc}).", where=str(path)) from None
+    return text, _parse_toml(text, str(path))
+
+
+def _parse_toml(text: str, filename: str) -> dict:
+    """TOML text → data, its structure bounded before and after ``tomllib`` reads it."""
+    prescan(text, filename)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise _toml_error(exc, str(path)) from None
+        raise _toml_error(exc, filename) from None
     except (RecursionError, MemoryError):
-        raise InputError("the TOML is nested too deeply to read.", where=str(path)) from None
-    return text, data
+        raise InputError("the TOML is nested too deeply to read.", where=filename) from None
+    check_tree(data, filename)
+    return data
 
 
 def _toml_error(exc: Exception, filename: str) -> InputError:
@@ -574,12 +582,13 @@ class _Builder:
         if isinstance(ld, S.GravitySpec):
             self.call(path, s.gravity, sc("g"), vec("direction"), name=name)
         elif isinstance(ld, S.ForceSpec):
-            self.call(path, s.force, name, P("point"), vec("vector"), B("body", True), ld.description)
+            self.call(path, s.force, name, P("point"), vec("vector"), B("body", True), ld.description,
+                      on=B("on", True))
         elif isinstance(ld, S.TorqueSpec):
             self.call(path, s.torque, name, B("body"), vec("vector"), B("reaction_body", True), ld.description)
         elif isinstance(ld, S.SpringSpec):
             self.call(path, s.spring, name, P("point_a"), P("point_b"), sc("stiffness"), sc("natural_length"),
-                      B("body_a", True), B("body_b", True), ld.description)
+                      B("body_a", True), B("body_b", True), ld.description, on_a=B("on_a", True), on_b=B("on_b", True))
         elif isinstance(ld, S.TorsionalSpringSpec):
             self.call(path, s.torsional_spring, name, B("body_a"), sc("stiffness"), sc("angle"),
                       sc("natural_angle"), B("body_b", True), vec("axis"), ld.description)
@@ -589,14 +598,15 @@ class _Builder:
                                  "or coordinate).", where=self.where(*path, "law"), hint="Rename that 'v'.")
             law = self.scalar(ld.law, path + ("law",), self.scope.with_names({"v": DAMPER_SPEED}))
             self.call(path, s.damper, name, P("point_a"), law, vec("along"), P("point_b", True),
-                      B("body_a", True), B("body_b", True), ld.description)
+                      B("body_a", True), B("body_b", True), ld.description, on_a=B("on_a", True), on_b=B("on_b", True))
         elif isinstance(ld, S.FrictionSpec):
             normal_force = self.scalar(ld.normal_force, path + ("normal_force",),
                                        self.scope.with_names(self.reactions))
             self.call(path, s.friction, name, B("body"), P("centre"), vec("normal"), sc("mu"), normal_force,
                       sc("radius"), B("against_body", True), P("against_point", True), ld.description)
         else:
-            self.call(path, s.impulse, name, P("point"), vec("vector"), B("body", True), ld.description)
+            self.call(path, s.impulse, name, P("point"), vec("vector"), B("body", True), ld.description,
+                      on=B("on", True))
 
     # questions --------------------------------------------------------------------------------------------
     def _question_scope(self) -> Scope:
@@ -754,13 +764,7 @@ def parse_problem(text: str, filename: str = "<problem>") -> tuple[System, Probl
     if len(text) > MAX_FILE_BYTES:
         raise InputError(f"the problem text is {len(text)} characters long (at most {MAX_FILE_BYTES}).",
                          where=filename)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise _toml_error(exc, filename) from None
-    except (RecursionError, MemoryError):
-        raise InputError("the TOML is nested too deeply to read.", where=filename) from None
-    return build_problem(data, text, Path(filename))
+    return build_problem(_parse_toml(text, filename), text, Path(filename))
 
 
 def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") -> tuple[System, ProblemSpec]:

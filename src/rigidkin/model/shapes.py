@@ -16,6 +16,7 @@ import sympy as sp
 from sympy.physics.mechanics import inertia, inertia_of_point_mass
 from sympy.physics.vector import Dyadic, Vector
 
+from .checks import NONNEGATIVE, POSITIVE, require
 from .frames import Frame
 
 
@@ -44,6 +45,19 @@ class Shape:
     mass: sp.Expr
 
     kind = "shape"
+    #: What each dimension must be: "positive" (a mass, a length, a radius) or "nonnegative".
+    rules = {"mass": POSITIVE}
+
+    def __post_init__(self):
+        self.check()
+
+    def check(self, values: dict | None = None, where: str | None = None) -> None:
+        """Refuse a mass or dimension that is not positive (or not ≥ 0 where zero is allowed), with the
+        parameters' numeric ``values`` put in when given."""
+        for key, rule in self.rules.items():
+            v = getattr(self, key, None)
+            if v is not None:
+                require(v, rule, f"{key.replace('_', ' ')} of the {self.kind}", where, values)
 
     def central_inertia(self, frame: Frame) -> Dyadic:
         raise NotImplementedError
@@ -71,6 +85,7 @@ class SlenderRod(Shape):
     length: sp.Expr = sp.Integer(1)
     axis: str = "x"
     kind = "slender rod"
+    rules = {"mass": POSITIVE, "length": POSITIVE}
 
     def central_inertia(self, frame):
         return _about_axis(frame, self.axis, 0, self.mass * self.length**2 / 12)
@@ -83,6 +98,7 @@ class ThinRing(Shape):
     radius: sp.Expr = sp.Integer(1)
     axis: str = "z"
     kind = "thin ring"
+    rules = {"mass": POSITIVE, "radius": POSITIVE}
 
     def central_inertia(self, frame):
         r = self.radius
@@ -97,6 +113,7 @@ class Disk(Shape):
     length: sp.Expr = sp.Integer(0)
     axis: str = "z"
     kind = "disk"
+    rules = {"mass": POSITIVE, "radius": POSITIVE, "length": NONNEGATIVE}
 
     def central_inertia(self, frame):
         m, r, L = self.mass, self.radius, self.length
@@ -115,6 +132,7 @@ class HollowCylinder(Shape):
     length: sp.Expr = sp.Integer(0)
     axis: str = "z"
     kind = "hollow cylinder"
+    rules = {"mass": POSITIVE, "radius": POSITIVE, "inner_radius": NONNEGATIVE, "length": NONNEGATIVE}
 
     def central_inertia(self, frame):
         m, ro, L = self.mass, self.radius, self.length
@@ -129,6 +147,7 @@ class SolidSphere(Shape):
 
     radius: sp.Expr = sp.Integer(1)
     kind = "solid sphere"
+    rules = {"mass": POSITIVE, "radius": POSITIVE}
 
     def central_inertia(self, frame):
         return _about_axis(frame, "z", *(2 * self.mass * self.radius**2 / 5,) * 2)
@@ -140,6 +159,7 @@ class SphericalShell(Shape):
 
     radius: sp.Expr = sp.Integer(1)
     kind = "spherical shell"
+    rules = {"mass": POSITIVE, "radius": POSITIVE}
 
     def central_inertia(self, frame):
         return _about_axis(frame, "z", *(2 * self.mass * self.radius**2 / 3,) * 2)
@@ -159,6 +179,7 @@ class HalfCylinder(Shape):
     axis: str = "z"
     toward: str = "-y"
     kind = "half cylinder"
+    rules = {"mass": POSITIVE, "radius": POSITIVE, "length": NONNEGATIVE}
 
     @property
     def centre_distance(self) -> sp.Expr:
@@ -189,6 +210,7 @@ class Hemisphere(Shape):
     radius: sp.Expr = sp.Integer(1)
     toward: str = "-y"
     kind = "hemisphere"
+    rules = {"mass": POSITIVE, "radius": POSITIVE}
 
     @property
     def centre_distance(self) -> sp.Expr:
@@ -212,6 +234,7 @@ class RectangularPlate(Shape):
     a_axis: str = "x"
     b_axis: str = "y"
     kind = "rectangular plate"
+    rules = {"mass": POSITIVE, "a": POSITIVE, "b": POSITIVE}
 
     def central_inertia(self, frame):
         m, a, b = self.mass, self.a, self.b
@@ -228,6 +251,7 @@ class Box(Shape):
     b: sp.Expr = sp.Integer(1)
     c: sp.Expr = sp.Integer(1)
     kind = "box"
+    rules = {"mass": POSITIVE, "a": POSITIVE, "b": POSITIVE, "c": POSITIVE}
 
     def central_inertia(self, frame):
         m, a, b, c = self.mass, self.a, self.b, self.c
@@ -250,6 +274,7 @@ class Massless(Shape):
 
     mass: sp.Expr = sp.Integer(0)
     kind = "massless"
+    rules = {"mass": NONNEGATIVE}
 
     def central_inertia(self, frame):
         return Dyadic(0)
@@ -273,6 +298,7 @@ class Inertia(Shape):
     centre: tuple = field(default=(0, 0, 0))
     about: str = "centre"
     kind = "given inertia"
+    rules = {"mass": NONNEGATIVE, "Ixx": NONNEGATIVE, "Iyy": NONNEGATIVE, "Izz": NONNEGATIVE}
 
     def centre_offset(self, frame):
         cx, cy, cz = (sp.sympify(c) for c in self.centre)
