@@ -23,6 +23,7 @@ force under friction) the solution is split into regimes, each with its conditio
 
 from __future__ import annotations
 
+import functools
 import itertools
 import random
 from collections.abc import Mapping
@@ -130,6 +131,13 @@ class Solution:
     @property
     def validity(self) -> tuple:
         return self._one().validity
+
+    @functools.cached_property
+    def warnings(self) -> tuple[str, ...]:
+        """Where the model's own laws disagree: dE/dt = ΣP_nc checked at a few random states (cheap)."""
+        from .laws.consistency import power_balance_warnings
+
+        return tuple(power_balance_warnings(self))
 
     def check(self, laws=None, expect=(), dimensions: bool = True):
         """Derive the equations of motion by every other law that applies and compare (a CheckReport)."""

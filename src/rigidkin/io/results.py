@@ -73,6 +73,7 @@ def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] 
         "answers": {},
         "answer_text": {},
         "notes": list(notes or []),
+        "warnings": list(sol.warnings),
     }
     for name, a in (answers or {}).items():
         if isinstance(a, str):            # not answered: the reason

@@ -235,6 +235,7 @@ class ForceSpec(Strict):
     point: Name
     vector: Expr
     body: Name | None = None
+    on: Name | None = None          # the body whose material point momentarily at ``point`` it pushes
     description: str = ""
 
 
@@ -254,6 +255,8 @@ class SpringSpec(Strict):
     natural_length: Expr = 0
     body_a: Name | None = None
     body_b: Name | None = None
+    on_a: Name | None = None        # end a acts on this body's material point momentarily at point_a
+    on_b: Name | None = None
     description: str = ""
 
 
@@ -276,6 +279,8 @@ class DamperSpec(Strict):
     point_b: Name | None = None
     body_a: Name | None = None
     body_b: Name | None = None
+    on_a: Name | None = None
+    on_b: Name | None = None
     description: str = ""
 
 
@@ -297,6 +302,7 @@ class ImpulseSpec(Strict):
     point: Name
     vector: Expr
     body: Name | None = None
+    on: Name | None = None
     description: str = ""
 
 

@@ -12,10 +12,52 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 from sympy.physics.vector import Vector
 
+from .. import algebra
 from ..errors import ModelError
 from .points import Point
+
+
+def moves_in(point: Point, body, inertial) -> bool:
+    """Whether ``point`` moves relative to ``body`` (None: the ground), i.e. is not one of its material points.
+
+    A point declared fixed in the body, or located from its mass centre by a vector fixed in the body's
+    frame, is a material point.  For the ground, a point whose motion is prescribed in time only (a
+    driven anchor) counts as fixed: the load's end there acts on whatever drives it.  ``inertial`` is
+    the inertial sympy ReferenceFrame.
+    """
+    if body is not None and (point.body is body or point is body.centre):
+        return False
+    if body is not None:
+        drift = (point.position() - body.centre.position()).dt(body.frame.ref)
+        if drift == 0:
+            return False
+        return not all(algebra.is_zero(c) for c in drift.to_matrix(inertial))
+    velocity = point.position().dt(inertial)
+    return velocity != 0 and any(c.atoms(AppliedUndef) for c in velocity.to_matrix(inertial))
+
+
+def check_end(load_name: str, kind: str, point: Point, body, explicit: bool, inertial) -> bool:
+    """Refuse a load end at a point that is not a material point of the body it acts on, unless the user
+    said ``on`` (the force then acts on the material point of that body momentarily there).
+
+    Returns True when the end is such a momentary material point (so the load's power must use the
+    body's material velocity there, and a spring is no longer conservative through its length).
+    """
+    if not moves_in(point, body, inertial):
+        return False
+    if explicit and body is not None:
+        return True
+    what = f"body {body.name}" if body is not None else "the ground (it is fixed in no body)"
+    raise ModelError(
+        f"point {point.name} moves relative to {what}, so it is not a material point of it: the {kind}'s end "
+        f"there acts on no definite point, and its power and its potential would disagree.",
+        where=f"{kind} {load_name}",
+        hint="Fix the point in the body it should act on (body = ... in [points], or a vector fixed in that body's "
+             "frame), or say that the force acts on the material point of a body momentarily at that place: "
+             "on_a = BODY / on_b = BODY for a spring's or damper's end (on = BODY for a force).")
 
 
 @dataclass(frozen=True, eq=False)
@@ -136,9 +178,15 @@ class Spring(Load):
     body_b: object | None = None
     stiffness: sp.Expr = None
     natural_length: sp.Expr = sp.Integer(0)
+    moving_a: bool = False   # point_a is the material point of body_a momentarily there (``on_a``)
+    moving_b: bool = False
 
     kind = "spring"
-    conservative = True
+
+    @property
+    def conservative(self) -> bool:
+        """K (ℓ − ℓ0)²/2 is its potential only when both ends are material points (or fixed anchors)."""
+        return not (self.moving_a or self.moving_b)
 
     def length(self, kin) -> sp.Expr:
         d = kin.position(self.point_a) - kin.position(self.point_b)
@@ -160,6 +208,8 @@ class Spring(Load):
         return out
 
     def potential(self, kin):
+        if not self.conservative:
+            return None
         return self.stiffness * (self.length(kin) - self.natural_length) ** 2 / 2
 
 
@@ -199,8 +249,11 @@ class Damper(Load):
     """A damper whose force is any law f(v) of a speed v: F = f(v) u on ``body_a`` at ``point_a``.
 
     v = (v_a − v_b)·u, with u the unit vector ``along`` (or, when ``along`` is None, the unit vector
-    from ``point_b`` to ``point_a``).  A linear damper is ``law = -c*v``; a cubic one ``-c*v**3``.
-    ``law`` is an expression in the symbol ``rigidkin.model.loads.V`` or a callable of v.
+    from ``point_b`` to ``point_a``), and v_a, v_b the velocities of the ends: of the points themselves
+    when they are material points of ``body_a``/``body_b`` (or fixed anchors), of the material points of
+    the bodies momentarily there when given with ``on`` (``moving_a``/``moving_b``).  The power is then
+    f(v) v.  A linear damper is ``law = -c*v``; a cubic one ``-c*v**3``.  ``law`` is an expression in
+    the symbol ``rigidkin.model.loads.V`` or a callable of v.
     """
 
     point_a: Point = None
@@ -209,6 +262,8 @@ class Damper(Load):
     along: Vector | None = None
     point_b: Point | None = None
     body_b: object | None = None
+    moving_a: bool = False
+    moving_b: bool = False
 
     kind = "damper"
 
@@ -223,9 +278,14 @@ class Damper(Load):
 
     def speed(self, kin) -> sp.Expr:
         u = self._direction(kin)
-        va = kin.velocity(self.point_a)
-        vb = kin.velocity(self.point_b) if self.point_b is not None else Vector(0)
+        va = self._end_velocity(kin, self.point_a, self.body_a, self.moving_a)
+        vb = self._end_velocity(kin, self.point_b, self.body_b, self.moving_b) if self.point_b is not None \
+            else Vector(0)
         return (va - vb).dot(u)
+
+    @staticmethod
+    def _end_velocity(kin, point, body, moving) -> Vector:
+        return kin.material_velocity(body, kin.position(point)) if moving else kin.velocity(point)
 
     def force_law(self, v: sp.Expr) -> sp.Expr:
         if callable(self.law) and not isinstance(self.law, sp.Basic):

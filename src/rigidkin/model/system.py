@@ -415,11 +415,16 @@ class System:
         d = -self.inertial.y if direction is None else self._check_vector(direction, f"load {name}")
         self._add_load(L.Gravity(name, g=_expr(g, f"load {name}"), direction=d))
 
-    def force(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "") -> L.Force:
-        """A known force at ``point`` (of ``body``; default: the body the point is fixed in)."""
+    def force(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "",
+              on=None) -> L.Force:
+        """A known force at ``point`` (of ``body``; default: the body the point is fixed in).
+
+        At a point that moves over the body (``on=body``, the same as ``body=``), the force acts on the
+        material point of the body momentarily there; its power uses that material point's velocity.
+        """
         where = f"force {name}"
         p = self._check_point(point, where)
-        return self._add_load(L.Force(name, body=self._body_of(p, body, where), point=p,
+        return self._add_load(L.Force(name, body=self._body_of(p, on if on is not None else body, where), point=p,
                                       vector=self._check_vector(vector, where), description=description))
 
     def torque(self, name: str, body, vector: Vector, reaction_body=None, description: str = "") -> L.Torque:
@@ -431,13 +436,21 @@ class System:
                                        description=description))
 
     def spring(self, name: str, point_a: Point | str, point_b: Point | str, stiffness, natural_length=0,
-               body_a=None, body_b=None, description: str = "") -> L.Spring:
-        """A linear spring between two points; ends not fixed in a body are anchored in the ground."""
+               body_a=None, body_b=None, description: str = "", on_a=None, on_b=None) -> L.Spring:
+        """A linear spring between two points; ends not fixed in a body are anchored in the ground.
+
+        ``on_a``/``on_b``: the body whose material point momentarily at ``point_a``/``point_b`` the
+        spring pulls (for an end that moves over the body, such as the top of a rolling wheel).
+        """
         where = f"spring {name}"
         pa, pb = self._check_point(point_a, where), self._check_point(point_b, where)
-        ba = self._body_of(pa, body_a, where)
-        bb = self._check_body(body_b, where, True) if body_b is not None else pb.body
-        return self._add_load(L.Spring(name, point_a=pa, body_a=ba, point_b=pb, body_b=bb,
+        ba = self._body_of(pa, on_a if on_a is not None else body_a, where)
+        bb = self._check_body(on_b if on_b is not None else body_b, where, True) \
+            if (body_b is not None or on_b is not None) else pb.body
+        ref = self.inertial.ref
+        ma = L.check_end(name, "spring", pa, ba, on_a is not None, ref)
+        mb = L.check_end(name, "spring", pb, bb, on_b is not None, ref)
+        return self._add_load(L.Spring(name, point_a=pa, body_a=ba, point_b=pb, body_b=bb, moving_a=ma, moving_b=mb,
                                        stiffness=_expr(stiffness, where), natural_length=_expr(natural_length, where),
                                        description=description))
 
@@ -451,21 +464,31 @@ class System:
             axis=self.inertial.z if axis is None else self._check_vector(axis, where), description=description))
 
     def damper(self, name: str, point_a: Point | str, law, along: Vector | None = None,
-               point_b: Point | str | None = None, body_a=None, body_b=None, description: str = "") -> L.Damper:
-        """A damper of any force law f(v) (``law`` in the symbol ``rigidkin.v`` or a callable)."""
+               point_b: Point | str | None = None, body_a=None, body_b=None, description: str = "",
+               on_a=None, on_b=None) -> L.Damper:
+        """A damper of any force law f(v) (``law`` in the symbol ``rigidkin.v`` or a callable).
+
+        ``on_a``/``on_b`` as for :meth:`spring`: v then uses the material velocity of that body there.
+        """
         where = f"damper {name}"
         pa = self._check_point(point_a, where)
         pb = self._check_point(point_b, where) if point_b is not None else None
-        bb = self._check_body(body_b, where, True) if body_b is not None else (pb.body if pb else None)
-        return self._add_load(L.Damper(name, point_a=pa, body_a=self._body_of(pa, body_a, where), law=law,
+        ob = on_b if on_b is not None else body_b
+        bb = self._check_body(ob, where, True) if ob is not None else (pb.body if pb else None)
+        ba = self._body_of(pa, on_a if on_a is not None else body_a, where)
+        ref = self.inertial.ref
+        ma = L.check_end(name, "damper", pa, ba, on_a is not None, ref)
+        mb = pb is not None and L.check_end(name, "damper", pb, bb, on_b is not None, ref)
+        return self._add_load(L.Damper(name, point_a=pa, body_a=ba, law=law,
                                        along=None if along is None else self._check_vector(along, where),
-                                       point_b=pb, body_b=bb, description=description))
+                                       point_b=pb, body_b=bb, moving_a=ma, moving_b=mb, description=description))
 
-    def impulse(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "") -> L.Impulse:
-        """An impulse F̂ applied at ``point`` (used by the impulse–momentum law)."""
+    def impulse(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "",
+                on=None) -> L.Impulse:
+        """An impulse F̂ applied at ``point`` (used by the impulse–momentum law); ``on`` as for :meth:`force`."""
         where = f"impulse {name}"
         p = self._check_point(point, where)
-        return self._add_load(L.Impulse(name, body=self._body_of(p, body, where), point=p,
+        return self._add_load(L.Impulse(name, body=self._body_of(p, on if on is not None else body, where), point=p,
                                         vector=self._check_vector(vector, where), description=description))
 
     def friction(self, name: str, body, centre: Point | str, normal: Vector, mu, normal_force, radius=0,

@@ -154,4 +154,6 @@ def problem_text(sol, spec=None, answers: dict | None = None, notes=()) -> str:
         parts.append(answers_text(answers, spec.questions if spec is not None else ()))
     if notes:
         parts.append("Notes\n" + "\n".join(f"{_INDENT}{n}" for n in notes))
+    if sol.warnings:
+        parts.append("Warnings\n" + "\n".join(f"{_INDENT}{w}" for w in sol.warnings))
     return "\n\n".join(parts)
