@@ -54,7 +54,7 @@ def plain_state(expr: sp.Basic, extra_functions: Iterable[sp.Function] = ()) -> 
 def random_point(symbols: Iterable[sp.Symbol], rng: random.Random) -> dict:
     """Random values: positive symbols in [0.5, 2], others in [-1.5, 1.5] (avoiding tiny magnitudes)."""
     values = {}
-    for s in symbols:
+    for s in sorted(symbols, key=str):      # a fixed order: the same values under any hash seed
         if s.is_positive:
             values[s] = sp.Float(rng.uniform(0.5, 2.0))
         else:

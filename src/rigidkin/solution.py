@@ -194,8 +194,20 @@ def _evaluate(expr, values: Mapping) -> float:
 
 
 # --------------------------------------------------------------------------------------------------
+#: The seed of sympy's random algorithms (factoring, polynomial gcds inside simplification).
+SYMPY_SEED = 14
+
+
+def repeatable() -> None:
+    """Seed sympy's random algorithms: the same input gives the same printed forms in every run."""
+    from sympy.core import random as sympy_random
+
+    sympy_random.seed(SYMPY_SEED)
+
+
 def solve_balance(setup: ModeSetup, equations, balances, method: str, trace: Trace) -> Solution:
     """Solve balance equations (linear in q̈_i and reactions) for every regime of the mode."""
+    repeatable()
     red = setup.reduction
     accels = [q.diff(t, 2) for q in red.independent]
     present = set().union(*[e.expr.free_symbols for e in equations]) if equations else set()

@@ -16,6 +16,7 @@ from sympy.physics.vector import dynamicsymbols
 from .. import algebra
 from ..errors import InputError, RigidkinError
 from ..printing import text
+from ..solution import repeatable
 from .equilibrium import equilibria
 from .events import _num, condition_expression, event, extreme, threshold
 from .integrals import along_motion, energy_integral, first_integrals
@@ -76,6 +77,7 @@ def _start(fields, context) -> dict:
 
 def answer(system, question: Question, context: dict | None = None) -> Answer:
     """Answer one question about ``system``."""
+    repeatable()
     context = context if context is not None else {}
     kind, f = question.kind, dict(question.fields)
     if kind not in KINDS:

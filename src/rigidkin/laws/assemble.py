@@ -19,7 +19,7 @@ from ..kinematics import linear_form
 from ..linear import solve_linear
 from ..mode import ModeSetup
 from ..printing import text
-from ..solution import LazyMap, Regime, Solution
+from ..solution import LazyMap, Regime, Solution, repeatable
 from ..trace import Trace
 
 t = dynamicsymbols._t
@@ -46,6 +46,7 @@ def _accelerations(M, f, coords, kin, method, where):
 
 def solution_from_rows(setup: ModeSetup, equations, method: str, trace: Trace, reference: Solution) -> Solution:
     """Solve reaction-free rows for q̈_i in each regime of ``reference`` (Euler's laws, same mode)."""
+    repeatable()
     red, kin = setup.reduction, setup.kin
     accels = [q.diff(t, 2) for q in red.independent]
     if len(equations) != len(accels):
