@@ -69,6 +69,12 @@ def _printable(text: object) -> str:
     return "".join(ch for ch in str(text) if ch in "\n\t" or not _is_control(ch))
 
 
+def figure_text(text: object) -> str:
+    """Text for a matplotlib title or label, shown as it is: no control characters, and ``$`` escaped so
+    that nothing is read as mathtext."""
+    return _printable(text).replace("$", r"\$")
+
+
 # HTML and Markdown ----------------------------------------------------------------------------------------
 def html_text(text: object) -> str:
     """Text for HTML content or a quoted attribute value: ``& < > " '`` as character references."""

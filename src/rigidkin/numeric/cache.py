@@ -221,9 +221,9 @@ def build(source: str, cdef: str, error=CacheError):
     flag_list = flags(len(source))
     digest = digest_of(source, cc, flag_list)
     with _LOCK:
+        folder = checked_folder()                        # a few stats: refused even when already loaded
         if digest in _LOADED:
             return _LOADED[digest]
-        folder = checked_folder()
         if not _trusted(folder, digest, source):
             lib = _compile(cc, flag_list, source, folder, error)
             for ext, data in ((".c", source.encode()), (".so", lib), (".sha256", _record(digest, lib).encode())):

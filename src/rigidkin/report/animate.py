@@ -19,6 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
 
+from ..textsafe import figure_text  # noqa: E402
 from .drawing import draw_body, draw_surfaces  # noqa: E402
 from .geometry import Geometry, body_size  # noqa: E402
 from .geometry import t as time_symbol  # noqa: E402
@@ -104,7 +105,7 @@ def animate(system, result, frames: int = 80, duration: float | None = None, siz
     fig, ax = plt.subplots(figsize=(size, size), dpi=dpi)
     fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=0.92)
     centres = {b.name: np.array([geom.point(b.centre, q)[:2] for q in states]) for b in system.bodies.values()}
-    mode_at = [result.segment_at(float(tt)).description for tt in times]
+    mode_at = [figure_text(result.segment_at(float(tt)).description) for tt in times]
 
     def draw(i):
         ax.clear()

@@ -29,6 +29,7 @@ from ..kinematics import Kinematics  # noqa: E402
 from ..model import shapes as S  # noqa: E402
 from ..model.rolling3d import DiskContact  # noqa: E402
 from ..model.surfaces import Line  # noqa: E402
+from ..textsafe import figure_text  # noqa: E402
 from .animate import MotionAnimation  # noqa: E402
 
 t = dynamicsymbols._t
@@ -245,7 +246,7 @@ def animate3d(system, result=None, *, times=None, states=None, frames: int = 80,
         ax.set_xlabel("x")
         ax.set_ylabel("y")
         ax.set_zlabel("z")
-        ax.set_title(f"{system.title}   t = {ts[i]:.3f} s", fontsize=9)
+        ax.set_title(f"{figure_text(system.title)}   t = {ts[i]:.3f} s", fontsize=9)
         return []
 
     anim = FuncAnimation(fig, draw, frames=len(ts), interval=1000.0 / fps, blit=False, repeat=False)

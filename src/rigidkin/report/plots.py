@@ -18,6 +18,7 @@ from matplotlib.figure import Figure as MplFigure  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from ..printing import greek  # noqa: E402
+from ..textsafe import figure_text  # noqa: E402
 from .document import Animation, Figure, Paragraph, Table  # noqa: E402
 
 _UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s")}
@@ -25,7 +26,14 @@ _UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s")}
 
 def png(fig, dpi: int = 100) -> bytes:
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
+    try:
+        fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
+    except ValueError:                       # a title mathtext cannot parse: drawn as the plain text it is
+        from ..numeric.figure import _plain_text
+
+        _plain_text(fig)
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
     return buf.getvalue()
 
 
@@ -41,7 +49,7 @@ def phase_portrait(result, coordinates=None, max_panels: int = 4) -> MplFigure:
         for s in np.unique(seg):
             m = seg == s
             ax.plot(q[m], u[m], lw=1.4, color=f"C{int(s) % 10}",
-                    label=result.segments[int(s)].description if len(result.segments) > 1 else None)
+                    label=figure_text(result.segments[int(s)].description) if len(result.segments) > 1 else None)
         ax.plot(q[0], u[0], "o", mfc="white", mec="k", ms=7, zorder=5, label="start")
         ax.plot(q[-1], u[-1], "s", color="k", ms=6, zorder=5, label="end")
         for i, e in enumerate(result.events, 1):
@@ -61,7 +69,7 @@ def phase_portrait(result, coordinates=None, max_panels: int = 4) -> MplFigure:
         ax.ticklabel_format(style="sci", scilimits=(-3, 4), useMathText=True)
     for ax in axes[n:]:
         ax.set_visible(False)
-    fig.suptitle(f"{result.title}: phase portrait", fontsize=11)
+    fig.suptitle(f"{figure_text(result.title)}: phase portrait", fontsize=11)
     return fig
 
 
