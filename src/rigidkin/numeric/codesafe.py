@@ -47,23 +47,25 @@ def check_expressions(exprs: Iterable, symbols: Iterable[sp.Symbol] | None = Non
     symbols, strings, derivatives, integrals, lambdas).  With ``symbols``, every symbol must be one of them.
     """
     allowed = set(symbols) if symbols is not None else None
-    out = []
-    for e in exprs:
-        e = sp.sympify(e)
-        for node in sp.preorder_traversal(e):
-            if not isinstance(node, sp.Basic):
-                continue
-            mod = type(node).__module__ or ""
-            if isinstance(node, _FORBIDDEN) or not mod.startswith("sympy."):
-                raise UnsafeCodeError(f"an expression contains {_describe(node)}, which is not plain mathematics, "
-                                      "so no code is generated for it.", where=where or "code generation",
-                                      hint="Every quantity must be a parameter, a coordinate, a rate or time, "
-                                           "combined with sympy's own functions.")
-            if allowed is not None and isinstance(node, sp.Symbol) and node not in allowed:
-                raise UnsafeCodeError("an expression contains a quantity that is neither a coordinate, a rate, "
-                                      "time nor a parameter, so no code is generated for it.",
-                                      where=where or "code generation")
-        out.append(e)
+    out = [sp.sympify(e) for e in exprs]
+    seen: set = set()
+    stack = list(out)
+    while stack:                                        # every distinct node once (shared subtrees too)
+        node = stack.pop()
+        if not isinstance(node, sp.Basic) or node in seen:
+            continue
+        seen.add(node)
+        stack.extend(node.args)
+        mod = type(node).__module__ or ""
+        if isinstance(node, _FORBIDDEN) or not mod.startswith("sympy."):
+            raise UnsafeCodeError(f"an expression contains {_describe(node)}, which is not plain mathematics, "
+                                  "so no code is generated for it.", where=where or "code generation",
+                                  hint="Every quantity must be a parameter, a coordinate, a rate or time, "
+                                       "combined with sympy's own functions.")
+        if allowed is not None and isinstance(node, sp.Symbol) and node not in allowed:
+            raise UnsafeCodeError("an expression contains a quantity that is neither a coordinate, a rate, "
+                                  "time nor a parameter, so no code is generated for it.",
+                                  where=where or "code generation")
     return out
 
 
