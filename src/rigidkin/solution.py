@@ -35,7 +35,8 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from . import algebra
-from .errors import ConstraintError, RegimeError, RigidkinError
+from .determinacy import _determinacy
+from .errors import RegimeError, RigidkinError
 from .kinematics import linear_form
 from .linear import solve_linear
 from .mode import ModeSetup
@@ -157,11 +158,35 @@ class Solution:
         return self.regimes[index]
 
     def regime_at(self, values: Mapping) -> Regime:
-        """The regime whose conditions hold at numeric ``values`` (symbols and q, q̇ → numbers)."""
+        """The regime whose conditions hold at numeric ``values`` (symbols and q, q̇ → numbers).
+
+        Coordinates and rates not given take their declared initial values (else 0), parameters their
+        values.  Where a condition is exactly zero (a slip speed at a start from rest) the regime is the
+        one whose condition its rate of change satisfies (the slip that starts).
+        """
+        values = _complete(self, values)
+        missing = sorted({str(s) for c in (c for r in self.regimes for c in r.conditions)
+                          for s in sp.sympify(c.expr).free_symbols} - {str(k) for k in values} - {"t"})
+        if missing:
+            raise RegimeError(f"the regime depends on {', '.join(missing)}, which have no value.",
+                              hint="Give the parameters values.")
+        zero = []
         for r in self.regimes:
-            if all(c.holds(float(_evaluate(c.expr, values))) for c in r.conditions):
+            ok = True
+            for c in r.conditions:
+                v = float(_evaluate(c.expr, values))
+                if abs(v) <= 1e-12:
+                    zero.append(c.label)
+                    acc = {q.diff(t, 2): a for q, a in r.accelerations.items()}
+                    v = float(_evaluate(sp.diff(c.expr, t).xreplace(acc), values))
+                ok = ok and c.holds(v)
+            if ok:
                 return r
-        raise RegimeError("no regime's conditions hold at the given state (a sign is zero there?).")
+        if zero:
+            raise RegimeError(f"at this state the condition of every regime is zero ({zero[0]}) and no slip "
+                              "starts from it: the contact sticks.",
+                              hint="Ask with the contact's mode set to 'stick' (mode = { contact = \"stick\" }).")
+        raise RegimeError("no regime's conditions hold at the given state.")
 
     # presentation ------------------------------------------------------------------------------
     def __str__(self) -> str:
@@ -183,6 +208,20 @@ class Solution:
                 lines.append(rf"\text{{Regime {i}: }} {conds}\\")
             lines += [f"{latex(e)} = 0" + r"\\" for e in r.eom]
         return "$\\displaystyle \\begin{gathered}" + "\n".join(lines) + "\\end{gathered}$"
+
+
+def _complete(solution, values: Mapping) -> dict:
+    """Values with every coordinate and rate (declared initial values, else 0) and every parameter."""
+    out = dict(values)
+    for p in solution.system.parameter_info.values():
+        if p.symbol not in out and p.value is not None:
+            out[p.symbol] = p.value
+    for c in solution.system.coordinate_info.values():
+        if c.symbol not in out:
+            out[c.symbol] = c.initial if c.initial is not None else 0
+        if c.symbol.diff(t) not in out:
+            out[c.symbol.diff(t)] = c.rate if c.rate is not None else 0
+    return out
 
 
 def _evaluate(expr, values: Mapping) -> float:
@@ -230,62 +269,6 @@ def solve_balance(setup: ModeSetup, equations, balances, method: str, trace: Tra
                     tuple(red.dependent), MappingProxyType(dict(red.coord_map)),
                     MappingProxyType({k: setup.scalar(v) for k, v in red.rate_map.items()}),
                     tuple(regimes), tuple(equations), trace, setup)
-
-
-def _numeric(M: sp.Matrix, seed: int) -> np.ndarray:
-    plain, _ = algebra.plain_state(M)
-    rng = random.Random(seed)
-    vals = algebra.random_point(plain.free_symbols - {t}, rng)
-    vals[t] = sp.Float(0.41)
-    return np.array(plain.xreplace(vals).evalf(), dtype=complex)
-
-
-def _numeric_fast(M: sp.Matrix, seed: int) -> np.ndarray:
-    """Like ``_numeric`` but through lambdify (machine floats): for large coefficient matrices."""
-    plain, _ = algebra.plain_state(M)
-    syms = sorted(plain.free_symbols - {t}, key=str)
-    rng = random.Random(seed)
-    vals = algebra.random_point(syms, rng)
-    f = sp.lambdify([t] + syms, plain, "numpy")
-    with np.errstate(all="ignore"):
-        return np.array(f(0.41, *[float(vals[s]) for s in syms]), dtype=complex)
-
-
-def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "") -> list[int]:
-    """Check the linear system; return the indices of a square, nonsingular set of rows."""
-    Ab = _numeric_fast(A.row_join(b), 5)
-    nA, nb = Ab[:, :-1], Ab[:, -1:]
-    scale = max(1.0, float(np.abs(nA).max()))
-    rank = np.linalg.matrix_rank(nA, tol=1e-9 * scale)
-    n = len(unknowns)
-    if rank < n:
-        _, _, vh = np.linalg.svd(nA)
-        null = vh[rank:].conj().T
-        loose = [text(unknowns[i]) for i in range(n) if np.abs(null[i]).max() > 1e-8]
-        raise ConstraintError(
-            f"the balance laws give {len(labels)} equations of rank {rank} for {n} unknowns; "
-            f"{', '.join(loose)} cannot be determined from them.",
-            hint="The model is under-determined: a reaction is redundant (statically indeterminate "
-                 f"supports) or a body lacks a constraint or a coordinate. {dof_note}")
-    keep = []
-    for i in range(len(labels)):
-        trial = keep + [i]
-        if np.linalg.matrix_rank(nA[trial], tol=1e-9 * scale) == len(trial):
-            keep = trial
-        if len(keep) == n:
-            break
-    # consistency of the rows left out
-    x = np.linalg.solve(nA[keep], nb[keep])
-    bad = [labels[i] for i in range(len(labels)) if i not in keep
-           and abs((nA[i] @ x - nb[i])[0]) > 1e-8 * max(1.0, float(np.abs(nb).max()))]
-    if bad:
-        raise ConstraintError(
-            f"the balance laws give {len(labels)} equations for {n} unknowns "
-            f"({', '.join(text(u) for u in unknowns)}), and {'; '.join(bad)} contradict the others.",
-            hint="The coordinates hold back motions that no constraint enforces: a constraint (with its "
-                 "reaction) is missing, or a load has no reaction to carry it. "
-                 f"{dof_note}")
-    return keep
 
 
 class LazyMap(Mapping):

@@ -115,9 +115,7 @@ def _eom(system, question, f, context):
 def _reaction(system, question, f, context):
     sol = _solution(system, f)
     name = str(f.get("reaction"))
-    regime = sol.regimes[0] if len(sol.regimes) == 1 else None
-    if regime is None:
-        raise RigidkinError("the reaction depends on the regime; say which with 'mode'.")
+    regime = sol.regimes[0]
     if name not in regime.reactions:
         raise InputError(f"there is no reaction named '{name}'.", where=question.where,
                          hint=f"Reactions: {', '.join(regime.reactions)}.")
@@ -128,6 +126,13 @@ def _reaction(system, question, f, context):
         return Answer(question, value, f"{name} = {text(value)} along the motion from "
                                        f"{_state_text(integral.start, integral.coordinate)}",
                       details={"integral": integral.equation})
+    if len(sol.regimes) > 1:
+        if start:
+            raise RigidkinError("the reaction along a motion needs one regime, and this mode has "
+                                f"{len(sol.regimes)} (the sense of slip): give the contact's mode.")
+        values = tuple(r.reactions[name] for r in sol.regimes)
+        return Answer(question, values, " | ".join(f"while {r.describe()}: {name} = {text(r.reactions[name])}"
+                                                   for r in sol.regimes))
     value = regime.reactions[name]
     return Answer(question, value, f"{name} = {text(value)}")
 
@@ -156,19 +161,23 @@ def _integral(system, question, f, context):
 
 def _event(system, question, f, context):
     sol = _solution(system, f)
-    ev = event(sol, f["when"], _start(f, context), name=question.name)
+    ev = event(sol, f["when"], _start(f, context), name=question.name, mode=f.get("mode"))
     if not ev.happens:
-        return Answer(question, None, f"never: {'; '.join(ev.notes)}", note="; ".join(ev.notes))
+        return Answer(question, None, f"does not happen: {'; '.join(ev.notes)}", note="; ".join(ev.notes),
+                      details={"happens": False})
     q = ev.coordinate
     parts = [f"{text(k)} = {text(v)}{_reading(v, system, _kind_of(system, k))}"
              for k, v in ev.configuration.items()]
-    end = dict(ev.configuration)
-    end[q.diff(t)] = ev.rate
+    end = dict(ev.state) if ev.state else {**ev.configuration, q.diff(t): ev.rate}
+    rates = [f"{text(k)} = {text(v)}{_reading(v, system)}" for k, v in end.items()
+             if isinstance(k, sp.Derivative)]
     when = f["when"]
     cond = text(when) if isinstance(when, sp.Eq) else f"{text(when)} = 0"
-    return Answer(question, ev.value, ", ".join(parts) + f" (where {cond})", exact=ev.exact,
+    head = f"at t = {ev.time:.10g}: " if ev.time is not None else ""
+    return Answer(question, ev.value, head + ", ".join(parts + rates) + f" (where {cond})", exact=ev.exact,
                   tolerance=ev.tolerance, note="; ".join(ev.notes),
-                  details={"configuration": ev.configuration, "rate": ev.rate, "end_state": end})
+                  details={"happens": True, "configuration": ev.configuration, "rate": ev.rate,
+                           "end_state": end, "time": ev.time})
 
 
 def _extreme(system, question, f, context):
@@ -201,6 +210,9 @@ def _threshold(system, question, f, context):
 
 def _equilibrium(system, question, f, context):
     sol = _solution(system, f)
+    if len(sol.regimes) > 1:
+        raise RigidkinError("at an equilibrium nothing slides, so a contact with sliding friction sticks there: "
+                            "ask with its mode set to 'stick'.")
     eqs = equilibria(sol)
     lines = [str(e) for e in eqs]
     return Answer(question, tuple(eqs), "; ".join(lines), details={"equilibria": eqs})

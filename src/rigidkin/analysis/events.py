@@ -21,9 +21,10 @@ from scipy.optimize import brentq
 from sympy.physics.vector import dynamicsymbols
 
 from .. import algebra
-from ..errors import RigidkinError
+from ..errors import RegimeError, RigidkinError
 from ..printing import text
 from .integrals import along_motion, energy_integral, single_regime
+from .states import at_state, full_state, state_from_names
 
 t = dynamicsymbols._t
 
@@ -45,6 +46,8 @@ class Event:
     exact: bool = True
     tolerance: float | None = None
     notes: tuple = ()
+    time: float | None = None             # t at the event, where it was found by simulation
+    state: dict = field(default_factory=dict)   # every coordinate and rate at the event
 
     def __str__(self) -> str:
         if not self.happens:
@@ -159,11 +162,21 @@ def _first_turning_point(integral, values, direction, q0n) -> float | None:
     return None
 
 
+def one_coordinate(solution, what: str):
+    """The single independent coordinate, or a clear refusal naming the ones there are."""
+    if len(solution.coordinates) != 1:
+        names = ", ".join(q.func.__name__ for q in solution.coordinates)
+        raise RigidkinError(f"{what} is found along a motion of one degree of freedom, and this mode has "
+                            f"{len(solution.coordinates)} ({names}).",
+                            hint="Ask with a mode that leaves one coordinate free (a contact that rolls or sticks).")
+    return solution.coordinates[0]
+
+
 #: Longest simulated time the numerical event search covers.
 SIMULATION_HORIZON = 30.0
 
 
-def event(solution, when, start: dict | None = None, name: str = "event") -> Event:
+def event(solution, when, start: dict | None = None, name: str = "event", mode: dict | None = None) -> Event:
     """The first configuration after ``start`` where ``when`` holds.
 
     Along a conservative one-degree-of-freedom motion this is a root of a function of the coordinate
@@ -173,16 +186,21 @@ def event(solution, when, start: dict | None = None, name: str = "event") -> Eve
     try:
         integral = energy_integral(solution, start)
     except RigidkinError as exc:
-        return event_by_simulation(solution, when, start, name, reason=exc.message)
+        return event_by_simulation(solution, when, start, name, reason=exc.message, mode=mode)
     return _event_1dof(solution, integral, when, name)
 
 
 def event_by_simulation(solution, when, start: dict | None = None, name: str = "event",
-                        horizon: float = SIMULATION_HORIZON, reason: str = "") -> Event:
-    """Locate the event by simulating from ``start`` (every parameter needs a value)."""
+                        horizon: float = SIMULATION_HORIZON, reason: str = "", mode: dict | None = None) -> Event:
+    """Locate the event by simulating from ``start`` (every parameter needs a value).
+
+    The simulator switches modes by itself (a contact opens, a slip stops); when the event asked for is
+    exactly such a switch it is that switch's time and state.  A condition on a reaction holds only in
+    the mode it was written for, so the answer says so when the mode changes first.
+    """
+    from ..errors import InputError
     from ..numeric.simulate import Phase as SimPhase
     from ..numeric.simulate import simulate
-    from .phases import full_state
 
     system = solution.system
     missing = [p.name for p in system.parameter_info.values() if p.value is None]
@@ -191,39 +209,74 @@ def event_by_simulation(solution, when, start: dict | None = None, name: str = "
                             f"values for the parameters {', '.join(missing)}.",
                             hint="Give the parameters values in the problem.")
     state = full_state(system, dict(start or {}))
+    values = numeric_values(solution)
     initial = {}
     for k, v in state.items():
         key = f"dot({k.args[0].func.__name__})" if isinstance(k, sp.Derivative) else k.func.__name__
-        initial[key] = float(_num(v, numeric_values(solution)))
+        initial[key] = float(_num(v, values))
+    names = set(solution.regimes[0].reactions)
+    on_reaction = any(getattr(s, "name", None) in names for s in sp.sympify(
+        when.lhs - when.rhs if isinstance(when, sp.Eq) else when).free_symbols)
     regime = solution.regimes[0]
     if len(solution.regimes) > 1:
-        regime = solution.regime_at({**state, **{p.symbol: p.value for p in system.parameter_info.values()}})
+        try:
+            regime = solution.regime_at({**state, **values})
+        except RegimeError:
+            if on_reaction:
+                raise
     g = condition_expression(solution, when, regime)
-    contact_states = {k: v for k, v in solution.states.items()
-                      if getattr(system.constraints[k], "kind", "") == "contact"}
-    from .phases import _at
-    g_start = _num(_at(g, state), numeric_values(solution))
+    contact_states = {k: v for k, v in dict(mode or {}).items()
+                      if getattr(system.constraints.get(k), "kind", "") == "contact"}
+
+    def g_at(named: dict) -> float:
+        return _num(at_state(g, state_from_names(system, named)), values)
+
+    g_start = _num(at_state(g, state), values)
     phases = [SimPhase(until=g, name=name), SimPhase()]
     if abs(g_start) < 1e-12:   # the condition holds at the start (a turning point from rest): step off it
         phases.insert(0, SimPhase(duration=1e-7, name="_start"))
-    res = simulate(system, horizon, initial, mode=contact_states, phases=phases)
-    hits = [e for e in res.events if e.kind == "phase" and e.name == name]
+    try:
+        res = simulate(system, horizon, initial, mode=contact_states or None, phases=phases)
+    except InputError:          # the simulator's own switch ends where the condition is already zero
+        res = simulate(system, horizon, initial, mode=contact_states or None)
     notes = [f"found by simulation ({reason.rstrip('.')}); time located to about 1e-10 s"] if reason else []
-    earlier = [e for e in res.events if e.kind not in ("phase",) and (not hits or e.t < hits[0].t)]
+    hits = [e for e in res.events if e.kind == "phase" and e.name == name]
+    switches = [e for e in res.events if e.kind not in ("phase",)]
+    tol = 1e-6 * max(1.0, abs(g_start))
+    first = None
+    for e in switches:
+        if hits and e.t > hits[0].t + 1e-12:
+            break
+        if abs(g_at(e.state)) <= tol:          # the asked event is this very switch
+            first = e
+            break
+        if on_reaction:                        # a reaction's formula holds only in the mode it was derived for
+            return Event(name, g, False, solution.coordinates[0], notes=tuple(notes + [
+                f"it does not happen in this mode: first {e.name} at t = {e.t:.6g} "
+                f"({_named_state_text(e.state)}), and the mode changes there"]))
+    if first is None and hits:
+        first = hits[0]
+        before = [e for e in switches if e.t < first.t]
+        if before:
+            notes.append(f"first {before[0].name} at t = {before[0].t:.6g}; the event happens in the motion "
+                         "that follows")
+    if first is None:
+        why = f"it does not happen within {horizon:g} s of simulated motion"
+        if switches:
+            why += f" (the mode changes: first {switches[0].name} at t = {switches[0].t:.6g})"
+        if res.status != "completed":
+            why += f"; the simulation stopped: {res.message}"
+        return Event(name, g, False, solution.coordinates[0], notes=tuple(notes + [why]))
+    at = state_from_names(system, first.state)
+    config = {c.symbol: at[c.symbol] for c in system.coordinate_info.values() if c.symbol in at}
     q = solution.coordinates[0]
-    if not hits:
-        why = f"not within {horizon:g} s of simulated motion"
-        if earlier:
-            why += f"; first {earlier[0].name} at t = {earlier[0].t:.6g}"
-        return Event(name, g, False, q, notes=tuple(notes + [why]))
-    if earlier:
-        notes.append(f"{earlier[0].name} happens first, at t = {earlier[0].t:.6g}; the event is in the motion "
-                     "that follows")
-    ev = hits[0]
-    config = {c.symbol: sp.Float(ev.state[c.name]) for c in system.coordinate_info.values()}
-    rate = sp.Float(ev.state[f"dot({q.func.__name__})"])
-    notes.append(f"at t = {ev.t:.10g}")
-    return Event(name, g, True, q, config[q], rate, config, False, 1e-9, tuple(notes))
+    notes.append(f"at t = {first.t:.10g}")
+    return Event(name, g, True, q, config[q], at.get(q.diff(t)), config, False, 1e-9, tuple(notes),
+                 time=float(first.t), state=at)
+
+
+def _named_state_text(named: dict) -> str:
+    return ", ".join(f"{k} = {v:.6g}" for k, v in named.items())
 
 
 def _event_1dof(solution, integral, when, name) -> Event:
@@ -322,7 +375,11 @@ def _event_1dof(solution, integral, when, name) -> Event:
     config = {q: value}
     for qd, rel in solution.relations.items():
         config[qd] = algebra.readable(rel.xreplace({q: value}))
-    return Event(name, g, True, q, value, rate, config, exact, None if exact else 1e-12, tuple(notes))
+    state = {**config, q.diff(t): rate}
+    for ud, rel in solution.rate_relations.items():
+        state[ud] = algebra.readable(at_state(rel, state))
+    return Event(name, g, True, q, value, rate, config, exact, None if exact else 1e-12, tuple(notes),
+                 state=state)
 
 
 def extreme(solution, coordinate=None, start: dict | None = None) -> Event:
@@ -342,7 +399,7 @@ def threshold(solution, holds: sp.Rel, start: dict | None = None, over: tuple | 
     start).  Returns {"rate": the threshold start rate (exact), "rate_squared": its square,
     "critical": the configuration where the condition is tightest}.
     """
-    (q,) = solution.coordinates
+    q = one_coordinate(solution, "a threshold")
     u0 = sp.Symbol("_u0", positive=True)
     st = dict(start or {})
     st[q.diff(t)] = u0

@@ -20,6 +20,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from .. import algebra
 from ..errors import RigidkinError
+from .states import at_state, full_state
 
 t = dynamicsymbols._t
 
@@ -130,7 +131,6 @@ def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
     identically, so a dissipative system simply has no energy integral in the list.
     """
     from ..laws.energy import kinetic_energy, potential_energy
-    from .phases import _at, full_state
 
     regime = single_regime(solution)
     setup = solution.setup
@@ -139,7 +139,7 @@ def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
     T, U = kinetic_energy(setup), potential_energy(setup)
     E = algebra.readable(T + U)
     if algebra.is_zero(_rate_along(solution, regime, E)):
-        out.append(FirstIntegral("energy", E, algebra.readable(_at(E, state)),
+        out.append(FirstIntegral("energy", E, algebra.readable(at_state(E, state)),
                                  "T + U is constant: no non-conservative load does work in this mode"))
     M = regime.mass_matrix
     for j, q in enumerate(solution.coordinates):
@@ -147,7 +147,7 @@ def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
                                  sp.Integer(0)))
         if p == 0 or not algebra.is_zero(_rate_along(solution, regime, p)):
             continue
-        out.append(FirstIntegral(f"momentum conjugate to {q.func.__name__}", p, algebra.readable(_at(p, state)),
+        out.append(FirstIntegral(f"momentum conjugate to {q.func.__name__}", p, algebra.readable(at_state(p, state)),
                                  f"{q.func.__name__} is cyclic: it appears neither in the kinetic energy nor in "
                                  "the generalised forces"))
     return out
