@@ -130,3 +130,111 @@ def test_a_single_mu_keeps_meaning_both_and_mu_s_below_mu_k_is_refused():
                                'kinetic = 0.4 }')
     with pytest.raises(rk.RigidkinError, match="static coefficient"):
         parse_problem(bad, "incline.toml")
+
+
+# (e) impacts: one impulse problem over every contact closed or closing -------------------------------
+def rod(mu, theta0, drop, supports=None, m=1.5, length=1.2):
+    """A rod (centre x, y; angle θ from the floor, counter-clockwise) above a rough floor y = 0.
+
+    Contacts at the ends A (−l/2 along the rod) and B (+l/2), or at ``supports`` = (a, b): the rod's
+    points at −a and +b from its centre."""
+    s = rk.System("rod-drop")
+    m_ = s.parameter("m", "kg", value=m)
+    l_ = s.parameter("l", "m", value=length)
+    g = s.parameter("g", "m/s^2", value=G)
+    mu_ = s.parameter("mu", "", value=mu)
+    a, b = supports or (length / 2, length / 2)
+    x = s.coordinate("x", "centre along Ex", kind="length", initial=0, rate=0)
+    y = s.coordinate("y", "centre height", kind="length", initial=a * math.sin(theta0) + drop, rate=0)
+    th = s.coordinate("theta", "angle of the rod from the floor, counter-clockwise", initial=theta0, rate=0)
+    R = s.frame("R", angle=th)
+    Gp = s.point("G", s.origin, x * s.inertial.x + y * s.inertial.y)
+    body = s.body("rod", rk.shapes.SlenderRod(m_, l_, axis="x"), frame=R, at=Gp)
+    A = s.point("A", Gp, -a * R.x, body=body)
+    B = s.point("B", Gp, b * R.x, body=body)
+    floor = s.line(s.origin, s.inertial.y)
+    s.contact("A", body, floor, centre=A, friction=mu_, normal_name="N_A", friction_name="F_A")
+    s.contact("B", body, floor, centre=B, friction=mu_, normal_name="N_B", friction_name="F_B")
+    s.gravity(g)
+    return s
+
+
+def hand_impact(m, I, points, u0, e, mu):
+    """Impulse–momentum by hand for a planar body (u = (vx, vy, ω)) striking the floor at ``points``
+    (offsets (rx, ry) from the centre): every combination of stick / slide ± per point, the one whose
+    impulses push, stay within the friction cone and slide against the slip."""
+    import itertools
+
+    vx0, vy0, w0 = u0
+    sols = []
+    for states in itertools.product(("stick", 1, -1), repeat=len(points)):
+        # unknowns: vx, vy, ω, then (Pn, Pt) per point
+        k = 3 + 2 * len(points)
+        A, b = np.zeros((k, k)), np.zeros(k)
+        A[0, 0], A[1, 1], A[2, 2] = m, m, I
+        b[:3] = m * vx0, m * vy0, I * w0
+        row = 3
+        for i, ((rx, ry), st) in enumerate(zip(points, states)):
+            pn, pt = 3 + 2 * i, 4 + 2 * i
+            A[0, pt] -= 1                               # m Δvx = Σ Pt
+            A[1, pn] -= 1                               # m Δvy = Σ Pn
+            A[2, pn] -= rx                              # I Δω = Σ (rx Pn − ry Pt)
+            A[2, pt] += ry
+            A[row, 1], A[row, 2] = 1, rx                # v_Py after = −e v_Py before
+            b[row] = -e * (vy0 + w0 * rx)
+            row += 1
+            if st == "stick":
+                A[row, 0], A[row, 2] = 1, -ry           # v_Px after = 0
+            else:
+                A[row, pt], A[row, pn] = 1, st * mu     # Pt = −σ µ Pn
+            row += 1
+        x = np.linalg.lstsq(A, b, rcond=None)[0]
+        ok = np.allclose(A @ x, b, atol=1e-12)
+        for i, ((_rx, ry), st) in enumerate(zip(points, states)):
+            pn, pt = x[3 + 2 * i], x[4 + 2 * i]
+            slip = x[0] - x[2] * ry
+            ok &= pn >= -1e-12
+            ok &= abs(pt) <= mu * pn + 1e-12 if st == "stick" else st * slip >= -1e-12
+        if ok:
+            sols.append(x[:3])
+    assert sols, "no hand solution"
+    return sols[0]
+
+
+@pytest.mark.parametrize("mu,e", [(0.8, 0.0), (0.1, 0.0), (0.8, 0.5)])
+def test_rod_dropped_at_an_angle_onto_a_rough_floor(mu, e):
+    m, length, theta0, drop = 1.5, 1.2, math.radians(30), 0.3
+    res = simulate(rod(mu, theta0, drop, m=m, length=length), 0.4, restitution=e)
+    ev = res.events[0]
+    assert ev.kind == "impact" and ev.contact == "A"
+    t_hit = math.sqrt(2 * drop / G)
+    assert ev.t == pytest.approx(t_hit, abs=1e-10)
+    v0 = G * t_hit
+    assert ev.state["dot(y)"] == pytest.approx(-v0, abs=1e-9)
+    a = length / 2
+    I = m * length**2 / 12
+    rx, ry = -a * math.cos(theta0), -a * math.sin(theta0)
+    vx, vy, w = hand_impact(m, I, [(rx, ry)], (0.0, -v0, 0.0), e, mu)
+    assert ev.after["dot(x)"] == pytest.approx(vx, abs=1e-9)
+    assert ev.after["dot(y)"] == pytest.approx(vy, abs=1e-9)
+    assert ev.after["dot(theta)"] == pytest.approx(w, abs=1e-9)
+    T = lambda s_: 0.5 * m * (s_["dot(x)"]**2 + s_["dot(y)"]**2) + 0.5 * I * s_["dot(theta)"]**2  # noqa: E731
+    assert T(ev.after) <= T(ev.state)
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5])
+def test_rod_falling_flat_onto_two_supports_takes_both_impulses_at_once(e):
+    m, length, drop, (a, b) = 1.5, 1.2, 0.2, (0.5, 0.2)
+    res = simulate(rod(0.5, 0.0, drop, supports=(a, b), m=m, length=length), 0.25, restitution=e)
+    ev = res.events[0]
+    assert ev.kind == "impact"
+    v0 = math.sqrt(2 * G * drop)
+    # by hand: both supports stop (or reverse by e) together, so ω⁺ = 0, v⁺ = e v0, and the impulses
+    # split as the lever rule says: P_A = m(1+e)v0·b/(a+b), P_B = m(1+e)v0·a/(a+b)
+    assert ev.after["dot(theta)"] == pytest.approx(0.0, abs=1e-9)
+    assert ev.after["dot(y)"] == pytest.approx(e * v0, abs=1e-9)
+    assert "N_A = " in ev.detail and "N_B = " in ev.detail
+    imp = dict(part.split(" = ") for part in ev.detail.replace("impulse ", "").split(", ") if " = " in part)
+    assert float(imp["N_A"]) == pytest.approx(m * (1 + e) * v0 * b / (a + b), rel=1e-5)    # 6 digits printed
+    assert float(imp["N_B"]) == pytest.approx(m * (1 + e) * v0 * a / (a + b), rel=1e-5)
+    assert res.energy["T"][res.t > ev.t][0] <= res.energy["T"][res.t < ev.t][-1] + 1e-12

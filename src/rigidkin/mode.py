@@ -35,6 +35,7 @@ class ModeSetup:
     reduction: Reduction
     substitutions: dict
     trace: Trace = field(default_factory=Trace)
+    held: tuple = ()     # contacts whose friction the sticking ones carry (statically indeterminate)
 
     def vector(self, v):
         """A vector with the dependent rates and accelerations eliminated (q_d kept: frames may turn with them)."""
@@ -93,6 +94,8 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
     if not integrate and red.rate_integrated:
         red = replace(red, coord_map={k: v for k, v in red.coord_map.items() if k not in red.rate_integrated},
                       rate_integrated=frozenset())
+    held = _held_contacts(system, kin, red, loads, mode, trace)
+    loads = [ld for ld in loads if not (getattr(ld, "name", None) in held and ld.kind == "sliding friction")]
     apps, signs = [], []
     for ld in loads:
         apps.extend(ld.applications(kin))
@@ -109,9 +112,31 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
                              hint="Make the contact rolling (stick), or add a coordinate that lets it slip.")
         kept.append(sc)
     setup = ModeSetup(system, kin, states, rows, loads, apps, reactions, kept, red, substitutions, trace)
+    setup.held = held
     _trace_kinematics(setup)
     system._cache[key] = setup
     return setup
+
+
+def _held_contacts(system, kin, red, loads, mode, trace) -> tuple[str, ...]:
+    """Contacts named ``slip`` whose slip speed the other constraints hold at zero (a rod at rest on two
+    rough supports, one of them sticking): their friction cannot be told apart from the sticking
+    contacts' friction (statically indeterminate), so it is carried by those and this contact acts
+    without friction of its own in the mode.  Only where the mode names the state explicitly."""
+    held = []
+    for ld in loads:
+        if ld.kind != "sliding friction" or mode.get(getattr(ld, "name", None)) != "slip":
+            continue
+        c = system.constraints.get(ld.name)
+        if c is None or getattr(c, "kind", "") != "contact" or not red.dependent:
+            continue
+        if kin.is_zero(red.to_independent(c.slip_velocity(kin))):
+            held.append(ld.name)
+            trace.add("Kinematics", f"Friction at {ld.name} statically indeterminate", [],
+                      f"the other constraints hold the slip speed at {ld.name} at zero, so its friction cannot be "
+                      f"separated from the friction of the sticking contacts: they carry it together "
+                      f"(their sum is determined, the split is not).")
+    return tuple(held)
 
 
 def _check_model(system, kin) -> None:

@@ -326,8 +326,8 @@ class Hybrid:
         """In a mode at rest (no degree of freedom) the state does not change, so a watch that does not
         depend on time explicitly (through a load such as a force growing with t) keeps its value: it is
         no event, even where it sits exactly at its limit (tan β = µs: the block stays)."""
-        if sol.coordinates:
-            return frozenset()
+        if sol.coordinates or any(self.layout.to_plain(v) != 0 for v in sol.rate_relations.values()):
+            return frozenset()           # it moves (a block carried by a belt has no degree of freedom either)
         react = {sp.Symbol(k, real=True): v for k, v in reg.reactions.items()}
         out = set()
         for i, e in enumerate(wexprs):
@@ -524,7 +524,17 @@ class Hybrid:
             if key in seen:
                 break
             seen.add(key)
-            self.solution(mode)          # ModeUnavailable propagates
+            try:
+                sol = self.solution(mode)
+            except ModeUnavailable:
+                alt = self._held_alternative(mode)
+                if alt is None:
+                    raise
+                mode = alt
+                sol = self.solution(mode)
+                notes.append("statically indeterminate: the friction at " + ", ".join(sol.setup.held)
+                             + " cannot be told apart from the other sticking contacts'; they carry it together")
+            held = tuple(getattr(sol.setup, "held", ()))
             k = self.regime_at(mode, t_, y, p, forced, zero_tol)
             model = self.model(mode, k)
             react = model.reactions(t_, y, p)
@@ -540,12 +550,15 @@ class Hybrid:
                 forced.pop(n, None)
                 notes.append(f"{n} opens: its normal reaction would pull ({react[str(self.contacts[n].N)]:.4g})")
                 continue
+            # the friction of held contacts is carried by the sticking ones: their limits add up
+            spare = sum(float(self._param_value(self.contacts[h].friction.static, p))
+                        * abs(react.get(str(self.contacts[h].N), 0.0)) for h in held)
             for n, c in self.contacts.items():
                 if mode[n] != STICK or not isinstance(c.friction, Coulomb):
                     continue
                 N, F = react.get(str(c.N), 0.0), react.get(str(c.F), 0.0)
                 mu = float(self._param_value(c.friction.static, p))
-                if abs(F) > mu * abs(N) + force_tol * fscale:
+                if abs(F) > mu * abs(N) + spare + force_tol * fscale:
                     if not self.kin.planar:
                         raise SimulationError(f"at t = {t_:.10g} contact {n} needs more friction than µN to "
                                               "stick, and slipping in three dimensions is not simulated yet.",
@@ -562,6 +575,20 @@ class Hybrid:
                               f"(tried up to {describe_mode(self.system, mode)}).", where=self.system.name,
                               hint="Sticking and slipping are both inconsistent here (a Painlevé-type paradox), "
                                    "or the contacts keep opening and closing.")
+
+    def _held_alternative(self, mode: dict) -> dict | None:
+        """A sticking mode that is over-constrained (a rod at rest on two rough supports): the same motion
+        with the later sticking contacts named ``slip``, held by the others (friction carried jointly)."""
+        sticking = [n for n in self.contacts if mode[n] == STICK and isinstance(self.contacts[n].friction, Coulomb)]
+        for n in reversed(sticking):
+            trial = {**mode, n: SLIP}
+            try:
+                sol = self.solution(trial)
+            except ModeUnavailable:
+                continue
+            if n in getattr(sol.setup, "held", ()):
+                return trial
+        return None
 
     def _param_value(self, expr, p) -> float:
         key = ("param", sp.sympify(expr))

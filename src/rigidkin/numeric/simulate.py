@@ -25,8 +25,8 @@ from scipy.integrate import solve_ivp
 from sympy.physics.vector import dynamicsymbols
 
 from ..errors import InputError
-from ..model.constraints import ROLLING, SMOOTH, Coulomb
-from .impact import impact
+from ..model.constraints import SMOOTH, Coulomb
+from .impact import impact, mode_after
 from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
 from .result import Event, Segment, SimulationResult, build_result
 from .rhs import RHS, SimulationError, compile_functions
@@ -392,22 +392,27 @@ def _transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
                                        "distance of the body from the surface).") from None
         detail = f"the normal reaction of {w.name} reaches zero; the contact opens"
     elif w.kind == "impact":
-        c = hyb.contacts[w.name]
-        out = impact(hyb, mode, w.name, t_, y, p, e_of.get(w.name, 0.0), model.regime_index)
+        out = impact(hyb, mode, w.name, t_, y, p, e_of, model.regime_index)
         y = np.array(y, dtype=float)
         y[:2 * n] = out.y[:2 * n]
         y[2 * n] += out.energy_change
-        detail = (f"impact at {w.name}: normal speed {out.approach_speed:.6g} → {out.separation_speed:.6g}, "
+        detail = (f"impact at {w.name}"
+                  + (f" (with {', '.join(c_ for c_ in out.contacts if c_ != w.name)})" if len(out.contacts) > 1
+                     else "")
+                  + f": normal speed {out.approach_speed:.6g} → {out.separation_speed:.6g}, "
                   + ", ".join(f"impulse {k_} = {v:.6g}" for k_, v in out.impulses.items())
-                  + f", kinetic energy change {out.energy_change:.6g}")
+                  + f", kinetic energy change {out.energy_change:.6g}"
+                  + ("; Newton's law with friction would create energy here, so the impact is plastic (e = 0)"
+                     if out.plastic else "")
+                  + (f"; the impulse problem has {out.solutions} solutions (the first in the fixed order is "
+                     "taken)" if out.solutions > 1 else ""))
+        cand, forced_after, nts0 = mode_after(hyb, mode, out, rest_speed)
+        forced = {k_: v for k_, v in _current_signs(hyb, model, t_, y, p).items() if k_ not in out.contacts}
+        forced.update(forced_after)
+        new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+        nts = nts0 + nts
         if out.separation_speed > rest_speed:
-            new_mode, k = mode, model.regime_index
-            nts = ["the body bounces off"]
-        else:
-            closed = STICK if c.friction == ROLLING else SLIP
-            cand = {**mode, w.name: closed}
-            forced = _current_signs(hyb, model, t_, y, p)
-            new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+            nts.insert(0, "the body bounces off")
     elif w.kind == "sticks":
         cand = {**mode, w.name: STICK}
         forced = _current_signs(hyb, model, t_, y, p)
