@@ -171,6 +171,8 @@ def test_every_command_on_a_hostile_file_runs_no_user_text(hostile, watch, capsy
                  ["sweep", path, "--param", "l=0.4:0.6:2", "--t-end", "0.2", "-o", "sweep2.csv", "--backend", "numpy"]):
         rc, out = _run(argv, capsys)
         assert rc == 0, (argv, out)
+        if argv == ["solve", path]:                      # the terminal form: no escape sequence reaches the terminal
+            assert TAG in out and "\x1b" not in out and "\u202e" not in out and "\x07" not in out
     for ext, more in (("html", ["--simulate", "0.2", "--no-animation"]), ("md", ["--no-checks"]),
                       ("tex", ["--no-checks", "--no-figures"])):
         rc, out = _run(["report", path, "-o", f"report.{ext}", *more], capsys)

@@ -1,5 +1,7 @@
 """The terminal form of a solution, for people: the coordinates and their senses restated, one equation
-per block in unicode math (θ̈, θ̇, µ), each reaction and answer named with what it is.
+per block in unicode math (θ̈, θ̇, µ), each reaction and answer named with what it is.  What a problem
+file wrote (title, senses, descriptions) cannot drive the terminal: control characters and escape
+sequences are shown as visible escapes (:func:`rigidkin.textsafe.terminal_safe`).
 """
 
 from __future__ import annotations
@@ -7,6 +9,7 @@ from __future__ import annotations
 from sympy.physics.vector import dynamicsymbols
 
 from ..printing import text
+from ..textsafe import terminal_safe
 
 t = dynamicsymbols._t
 _INDENT = "    "
@@ -78,6 +81,13 @@ def _coordinates(sol) -> list[str]:
         out.append(f"{_INDENT}while the constraints hold:")
         for q, e in sol.relations.items():
             out.append(f"{_INDENT * 2}{text(q)} = {text(e)}")
+    definitions = getattr(s, "definitions", {})
+    if definitions:
+        out += ["", "Definitions"]
+        for d in definitions.values():
+            value = f" = {d.value:.6g}" + (f" {d.unit}" if d.unit else "") if d.value is not None else ""
+            about = f"  ({d.description})" if d.description else ""
+            out.append(f"{_INDENT}{text(d.quantity)} = {text(d.expression)}{value}{about}")
     return out
 
 
@@ -122,7 +132,7 @@ def solution_text(sol, reactions=None, eom: bool = True) -> str:
         if len(sol.regimes) > 1:
             out += [f"Regime {i + 1} of {len(sol.regimes)}: while {r.describe()}", ""]
         out += _regime(sol, r, reactions, labels, eom)
-    return "\n".join(out)
+    return terminal_safe("\n".join(out))
 
 
 def answers_text(answers: dict, questions=()) -> str:
@@ -143,7 +153,7 @@ def answers_text(answers: dict, questions=()) -> str:
             out.append(f"{_INDENT * 2}(numerical, to within {a.tolerance:g})")
         if a.note:
             out.append(f"{_INDENT * 2}note: {a.note}")
-    return "\n".join(out)
+    return terminal_safe("\n".join(out))
 
 
 def problem_text(sol, spec=None, answers: dict | None = None, notes=()) -> str:
@@ -156,4 +166,4 @@ def problem_text(sol, spec=None, answers: dict | None = None, notes=()) -> str:
         parts.append("Notes\n" + "\n".join(f"{_INDENT}{n}" for n in notes))
     if sol.warnings:
         parts.append("Warnings\n" + "\n".join(f"{_INDENT}{w}" for w in sol.warnings))
-    return "\n\n".join(parts)
+    return terminal_safe("\n\n".join(parts))
