@@ -79,6 +79,8 @@ def dimension_of(expr, dims: dict) -> Dimension:
     e = sp.sympify(expr)
     if e.is_Number or e in (sp.pi, sp.E, sp.I) or e.is_NumberSymbol:
         return ONE
+    if getattr(e, "is_Defined", False):            # a derived quantity: the dimension of its definition
+        return dimension_of(e.definition, dims)
     if isinstance(e, sp.Derivative):
         base = dimension_of(e.expr, dims)
         for v, n in e.variable_count:

@@ -317,6 +317,8 @@ class _Builder:
         sp_ = self.spec
         for name, p in sp_.parameters.items():
             self.parameter(name, p)
+        for name, d in sp_.definitions.items():
+            self.definition(name, d)
         for name, c in sp_.coordinates.items():
             self.coordinate(name, c)
         self.frames()
@@ -368,6 +370,15 @@ class _Builder:
             to_si(value, unit, where)             # checked here to name the field; System converts it
         sym = self.call(path, self.s.parameter, name, p.unit, p.description, value, p.dimension, p.positive)
         self.scope.names[name] = sym
+
+    def definition(self, name, d):
+        """A derived quantity of the parameters (and earlier definitions): a name in every expression."""
+        path = ("definitions", name)
+        self.declared(name, "definition", path)
+        spec = d if isinstance(d, S.DefinitionSpec) else S.DefinitionSpec(value=d)
+        expr_path = path + ("value",) if isinstance(d, S.DefinitionSpec) else path
+        expr = parse_scalar(spec.value, self.scope, self.where(*expr_path))
+        self.scope.names[name] = self.call(path, self.s.define, name, expr, spec.unit, spec.description)
 
     def coordinate(self, name, c: S.CoordinateSpec):
         path = ("coordinates", name)
@@ -738,6 +749,7 @@ def system_scope(system, reactions: bool = True) -> Scope:
     """
     sc = default_scope()
     sc.names.update(system.parameters)
+    sc.names.update({n: d.quantity for n, d in system.definitions.items()})
     for name, c in system.coordinate_info.items():
         sc.names[name] = c.symbol
         sc.coordinates[name] = c.symbol

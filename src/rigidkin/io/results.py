@@ -64,6 +64,10 @@ def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] 
         "parameters": {
             p.name: {"symbol": _s(p.symbol), "unit": p.unit, "description": p.description, "value": p.value}
             for p in s.parameter_info.values()},
+        "definitions": {
+            n: {"symbol": n, "expression": _s(d.expression), "unit": d.unit, "description": d.description,
+                "value": d.value}
+            for n, d in getattr(s, "definitions", {}).items()},
         "relations": {q.func.__name__: _s(e) for q, e in sol.relations.items()},
         "eom": first["eom"],
         "accelerations": first["accelerations"],

@@ -61,6 +61,14 @@ class ParameterSpec(Strict):
     positive: bool = True
 
 
+class DefinitionSpec(Strict):
+    """A derived quantity: ``a = { value = "sqrt(R**2 - l**2)", unit = "m" }`` (or just the expression)."""
+
+    value: Expr
+    unit: str | None = None
+    description: str = ""
+
+
 class CoordinateSpec(Strict):
     sense: str
     kind: Literal["angle", "length", "other"] = "angle"
@@ -410,6 +418,7 @@ class ProblemFile(Strict):
     name: Name | None = None
     statement: str = ""
     parameters: dict[Name, ParameterSpec] = {}
+    definitions: dict[Name, DefinitionSpec | Expr] = {}
     coordinates: dict[Name, CoordinateSpec] = Field(min_length=1)
     frames: dict[Name, FrameSpec] = {}
     points: dict[Name, PointSpec] = {}

@@ -17,6 +17,8 @@ from ..units import NAMED, ONE, Dimension, to_si, unit_dimension
 from . import constraints as C
 from . import loads as L
 from .bodies import Body
+from .definitions import Defined, Definition
+from .definitions import define as define_quantity
 from .frames import Frame, make_reference_frame
 from .points import Point
 from .quantities import Coordinate, Parameter
@@ -64,6 +66,7 @@ class System:
         self.bodies: dict[str, Body] = {}
         self.constraints: dict[str, C.Constraint] = {}
         self.loads: dict[str, L.Load] = {}
+        self.definitions: dict[str, Definition] = {}     # derived quantities (System.define)
         self._names: dict[str, str] = {}
         self._cache: dict = {}
         basis = ("Ex", "Ey", "Ez")
@@ -134,6 +137,20 @@ class System:
         u0 = None if rate is None else to_si(rate, None, where)
         self._coordinates[name] = Coordinate(name, sym, sense, kind, dim, q0, u0, description)
         return sym
+
+    def define(self, name: str, expression, unit: str | None = None, description: str = "") -> Defined:
+        """A derived quantity ``name`` = ``expression`` (of parameters and earlier definitions).
+
+        Returns a quantity that prints as ``name`` in every result and means its definition in every
+        number (simulation, generated code); checked for dimensions (against ``unit`` if given) and for
+        being real with the parameters' values (positive when its value is).  E.g.
+        ``a = s.define("a", sp.sqrt(R**2 - l**2), "m", "distance of the chord from the centre")``.
+        """
+        where = f"definition {name}"
+        d = define_quantity(self, name, _expr(expression, where), unit, description, where)
+        self._claim(name, "definition")
+        self.definitions[name] = d
+        return d.quantity
 
     @property
     def parameters(self) -> dict[str, sp.Symbol]:

@@ -107,8 +107,10 @@ class Kernel:
 
 
 def _check_free(kernel: Kernel, exprs) -> None:
+    from ..model.definitions import expand  # derived quantities by their definitions
+
     allowed = set(kernel.args) | set(kernel.unknowns)
-    extra = set().union(*[sp.sympify(e).free_symbols for e in exprs]) - allowed if exprs else set()
+    extra = set().union(*[expand(sp.sympify(e)).free_symbols for e in exprs]) - allowed if exprs else set()
     if extra:
         raise CodegenError(f"the expressions contain {', '.join(sorted(map(str, extra)))}, which is neither a "
                            "coordinate, a rate, time nor a parameter, so no code can be generated for them.",

@@ -46,8 +46,11 @@ def check_expressions(exprs: Iterable, symbols: Iterable[sp.Symbol] | None = Non
     not control), and none of the kinds whose printed form carries a name (undefined functions, matrix
     symbols, strings, derivatives, integrals, lambdas).  With ``symbols``, every symbol must be one of them.
     """
+    from ..model.definitions import expand
+
     allowed = set(symbols) if symbols is not None else None
-    out = [sp.sympify(e) for e in exprs]
+    # derived quantities (a = √(R² − l²)) by their definitions
+    out = [expand(sp.sympify(e)) for e in exprs]
     seen: set = set()
     stack = list(out)
     while stack:                                        # every distinct node once (shared subtrees too)

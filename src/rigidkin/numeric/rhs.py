@@ -39,7 +39,9 @@ def use_backend(backend: Callable | None) -> None:
 
 def compile_functions(args: Sequence[sp.Symbol], exprs: Sequence[sp.Expr]) -> Callable:
     """One numeric function of ``args`` returning the values of ``exprs`` (common subexpressions shared)."""
-    exprs = [sp.sympify(e) for e in exprs]
+    from ..model.definitions import expand  # derived quantities by their definitions
+
+    exprs = [expand(sp.sympify(e)) for e in exprs]
     extra = set().union(*[e.free_symbols for e in exprs]) - set(args) if exprs else set()
     if extra:
         names = ", ".join(sorted(map(str, extra)))
