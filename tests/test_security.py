@@ -363,7 +363,7 @@ def test_the_cache_folder_is_created_private_and_files_are_ours(private_cache):
     assert files[".sha256"].read_text().split()[0] == files["digest"]
 
 
-@pytest.mark.parametrize("mode", [0o777, 0o1777])
+@pytest.mark.parametrize("mode", [0o777, 0o1777], ids=["0777", "1777-sticky"])
 def test_a_world_writable_cache_folder_is_refused(tmp_path, monkeypatch, capsys, mode):
     shared = tmp_path / "shared"
     shared.mkdir()

@@ -121,8 +121,7 @@ def checked_folder() -> Path:
     why = _why_not(folder, st) or _unsafe_ancestor(folder)
     if why:
         if explicit:
-            raise CacheError(f"RIGIDKIN_CACHE names a folder that is not safe for compiled code: {why}.",
-                             where="RIGIDKIN_CACHE",
+            raise CacheError(f"{why}, so rigidkin keeps no compiled code there.", where="RIGIDKIN_CACHE",
                              hint="Another user could put a library there that rigidkin would load. Point "
                                   "RIGIDKIN_CACHE to a folder of your own (rigidkin creates it with mode 0700).")
         warnings.warn(f"the code cache is not private ({why}); compiling into a private temporary folder instead.",

@@ -7,12 +7,14 @@ balance equations before the symbolic solve, solved numerically by LU at every c
 dy/dt = (q̇, q̈) of every coordinate (dependent ones through the constraints' rate and acceleration
 relations) and named outputs (the reactions and any event function).
 
-``compile_kernel`` turns it into one C file (common subexpressions eliminated with ``sympy.cse``,
-small integer powers as products), compiled once with the machine's C compiler and loaded through
-cffi; the shared library is cached on disk by a hash of the generated source in
-``$RIGIDKIN_CACHE`` (default ``~/.cache/rigidkin``).  The same file holds the batch integrator of
-:mod:`rigidkin.numeric.batch`.  Without a compiler (or cffi) the same kernel is evaluated by numpy
-(``lambdify`` with CSE), so every caller keeps working, only slower.
+``compile_kernel`` turns it into one C file (:mod:`rigidkin.numeric.csource`: common subexpressions
+eliminated with ``sympy.cse``, small integer powers as products, our own names only — no user text),
+compiled once with the machine's C compiler and loaded through cffi; the shared library is cached on
+disk by a hash of the generated source in ``$RIGIDKIN_CACHE`` (default ``~/.cache/rigidkin``), a
+private folder whose every file is checked before it is loaded (:mod:`rigidkin.numeric.cache`).  The
+same file holds the batch integrator of :mod:`rigidkin.numeric.batch`.  Without a compiler (or cffi)
+the same kernel is evaluated by numpy (``lambdify`` with CSE, on our own argument names), so every
+caller keeps working, only slower.
 """
 
 from __future__ import annotations
@@ -26,11 +28,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
-from sympy.printing.c import C99CodePrinter
 
 from ..errors import RigidkinError
 from .cache import _LOADED, build, cache_dir, compiler  # noqa: F401  (cache_dir, _LOADED: public through here)
-from .codesafe import audit_c, check_expressions, safe_lambdify
+from .codesafe import safe_lambdify
+from .csource import _CDEF, c_source  # noqa: F401  (c_source, _CDEF: public through here)
 from .state import StateLayout, parameter_vector
 
 t = dynamicsymbols._t
@@ -248,161 +250,6 @@ def _implicit(system, setup, regime) -> Kernel:
                tuple(names[n_acc:]) + tuple(str(r) for r in absent), label=system.name)
     _check_free(k, [*k.A, *k.b, *rates])
     return k
-
-
-# ---------------------------------------------------------------------------------------------------
-# C source
-class _Printer(C99CodePrinter):
-    """C99 with small integer powers written as products (exact, and faster than pow)."""
-
-    def __init__(self):
-        super().__init__({"strict": True})
-
-    def _print_Pow(self, expr):
-        base, exp = expr.args
-        if exp.is_Integer and 2 <= abs(int(exp)) <= 4:
-            b = self.parenthesize(base, 100)
-            prod = "*".join([b] * abs(int(exp)))
-            return f"({prod})" if exp > 0 else f"(1.0/({prod}))"
-        if exp == sp.Rational(-1, 2):
-            return f"(1.0/sqrt({self._print(base)}))"
-        return super()._print_Pow(expr)
-
-
-def _c_names(kernel: Kernel) -> dict:
-    """Plain symbols → C names: T, y[i], p[j], X[k]."""
-    m = {kernel.args[0]: sp.Symbol("T")}
-    n2 = kernel.ny
-    for i, s in enumerate(kernel.args[1:1 + n2]):
-        m[s] = sp.Symbol(f"y[{i}]")
-    for j, s in enumerate(kernel.args[1 + n2:]):
-        m[s] = sp.Symbol(f"p[{j}]")
-    for k, s in enumerate(kernel.unknowns):
-        m[s] = sp.Symbol(f"X[{k}]")
-    return m
-
-
-def _c_block(exprs, targets, names, printer, prefix="w") -> list[str]:
-    """CSE'd C statements assigning ``exprs`` to ``targets``: only our names (``names`` maps every symbol to
-    ``T``, ``y[i]``, ``p[j]`` or ``X[k]``), sympy's own functions and numbers; audited before use."""
-    exprs = [e.xreplace(names) for e in check_expressions(exprs, names, "code generation")]
-    if not exprs:
-        return []
-    subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols(prefix), order="none")
-    try:
-        lines = [f"    const double {s} = {printer.doprint(e)};" for s, e in subs]
-        lines += [f"    {tgt} = {printer.doprint(e)};" for tgt, e in zip(targets, reduced)]
-    except ValueError as exc:                 # the printer's strict mode: something C cannot express
-        raise CodegenError(f"the equations hold something C cannot express ({str(exc).splitlines()[0][:120]}).",
-                           hint="Use backend='numpy'.") from None
-    audit_c(lines)
-    return lines
-
-
-_LU_C = r"""
-/* Solve A x = b in place (n <= RK_NX): LU with partial pivoting; returns 0, or 3 when singular. */
-static int rk_lu_solve(int n, double *A, double *b) {
-    for (int k = 0; k < n; k++) {
-        int piv = k; double best = fabs(A[k * n + k]);
-        for (int i = k + 1; i < n; i++) { double v = fabs(A[i * n + k]); if (v > best) { best = v; piv = i; } }
-        if (!(best > 0.0)) return 3;
-        if (piv != k) {
-            for (int j = 0; j < n; j++) { double s = A[k * n + j]; A[k * n + j] = A[piv * n + j]; A[piv * n + j] = s; }
-            double s = b[k]; b[k] = b[piv]; b[piv] = s;
-        }
-        double inv = 1.0 / A[k * n + k];
-        for (int i = k + 1; i < n; i++) {
-            double f = A[i * n + k] * inv;
-            if (f == 0.0) continue;
-            for (int j = k + 1; j < n; j++) A[i * n + j] -= f * A[k * n + j];
-            b[i] -= f * b[k];
-        }
-    }
-    for (int i = n - 1; i >= 0; i--) {
-        double s = b[i];
-        for (int j = i + 1; j < n; j++) s -= A[i * n + j] * b[j];
-        b[i] = s / A[i * n + i];
-    }
-    return 0;
-}
-"""
-
-
-def c_source(kernel: Kernel) -> str:
-    """The C file of a kernel: ``rk_eval_rhs`` and ``rk_eval_out`` (static) and their exported wrappers."""
-    if "c" in kernel._cache:
-        return kernel._cache["c"]
-    printer = _Printer()
-    names = _c_names(kernel)
-    nx = len(kernel.unknowns)
-    # no user text in the file: not the model's name, nor any name of its quantities (see codesafe)
-    lines = ["/* generated by rigidkin.numeric.codegen */",
-             "#include <math.h>", "#include <string.h>",
-             f"#define RK_NY {kernel.ny}", f"#define RK_NP {kernel.np_}", f"#define RK_NX {max(nx, 1)}",
-             f"#define RK_NO {max(len(kernel.outputs), 1)}", f"#define RK_NOUT {len(kernel.outputs)}"]
-    if kernel.A is not None:
-        lines.append(_LU_C)
-
-    def unknowns_block(needed: set) -> list[str]:
-        if not nx or not needed:
-            return []
-        if kernel.A is None:
-            idx = sorted(needed)
-            return _c_block([kernel.b[i] for i in idx], [f"X[{i}]" for i in idx], names, printer, "v")
-        body = _c_block(list(kernel.A) + list(kernel.b), [f"M[{i}]" for i in range(nx * nx)]
-                        + [f"X[{i}]" for i in range(nx)], names, printer, "v")
-        return [f"    double M[{nx * nx}];", *body, "    if (rk_lu_solve(RK_NX, M, X)) return 3;"]
-
-    def needed(exprs) -> set:
-        used = set().union(*[sp.sympify(e).free_symbols for e in exprs]) if exprs else set()
-        return {i for i, s in enumerate(kernel.unknowns) if s in used}
-
-    def mass_matrix_block(needed_: set) -> list[str]:
-        n = kernel.M.rows
-        if not needed_:
-            return []
-        body = _c_block(list(kernel.M) + list(kernel.f), [f"M[{i}]" for i in range(n * n)]
-                        + [f"X[{i}]" for i in range(n)], names, printer, "v")
-        return [f"    double M[{max(n * n, 1)}];", *body, f"    if (rk_lu_solve({n}, M, X)) return 3;"]
-
-    for fname, exprs, target in (("rhs", kernel.rates, "dy"), ("out", kernel.outputs, "o")):
-        lines.append(f"static int rk_eval_{fname}(double T, const double *y, const double *p, double *{target}) {{")
-        lines.append(f"    double X[{max(nx, 1)}]; (void)X; (void)T; (void)y; (void)p;")
-        if fname == "rhs" and kernel.M is not None:
-            lines += mass_matrix_block(needed(exprs))
-        else:
-            lines += unknowns_block(needed(exprs))
-        lines += _c_block(exprs, [f"{target}[{i}]" for i in range(len(exprs))], names, printer, "w")
-        lines += ["    return 0;", "}"]
-    lines.append(r"""
-int rk_rhs(double t, const double *y, const double *p, double *dy) {
-    int code = rk_eval_rhs(t, y, p, dy);
-    for (int i = 0; i < RK_NY && !code; i++) if (!isfinite(dy[i])) code = 2;
-    return code;
-}
-int rk_out(double t, const double *y, const double *p, double *o) { return rk_eval_out(t, y, p, o); }
-int rk_rhs_batch(long n, const double *t, const double *y, const double *p, double *dy) {
-    int bad = 0;
-    for (long i = 0; i < n; i++) bad |= rk_eval_rhs(t[i], y + i * RK_NY, p + i * RK_NP, dy + i * RK_NY);
-    return bad;
-}
-int rk_out_batch(long n, const double *t, const double *y, const double *p, double *o) {
-    int bad = 0;
-    for (long i = 0; i < n; i++) bad |= rk_eval_out(t[i], y + i * RK_NY, p + i * RK_NP, o + i * RK_NO);
-    return bad;
-}
-""")
-    src = "\n".join(lines)
-    kernel._cache["c"] = src
-    return src
-
-
-_CDEF = """
-int rk_rhs(double t, const double *y, const double *p, double *dy);
-int rk_out(double t, const double *y, const double *p, double *o);
-int rk_rhs_batch(long n, const double *t, const double *y, const double *p, double *dy);
-int rk_out_batch(long n, const double *t, const double *y, const double *p, double *o);
-"""
 
 
 # ---------------------------------------------------------------------------------------------------
