@@ -238,3 +238,98 @@ def test_rod_falling_flat_onto_two_supports_takes_both_impulses_at_once(e):
     assert float(imp["N_A"]) == pytest.approx(m * (1 + e) * v0 * b / (a + b), rel=1e-5)    # 6 digits printed
     assert float(imp["N_B"]) == pytest.approx(m * (1 + e) * v0 * a / (a + b), rel=1e-5)
     assert res.energy["T"][res.t > ev.t][0] <= res.energy["T"][res.t < ev.t][-1] + 1e-12
+
+
+# (c) the contact problem over all contacts: Painlevé's paradox is reported, not guessed ----------------
+def test_painleve_rod_reported_with_the_critical_coefficient():
+    from rigidkin.numeric.contact_modes import ContactParadox
+
+    # a rod (half-length a) leaning at tan θ = 2 with its lower end sliding away from its centre:
+    # N = m g / (1 + 3cos²θ − 3µ sinθ cosθ) by hand, which changes sign through ∞ at µ* = 4/3
+    theta = math.atan(2.0)
+    m, length = 1.5, 1.2
+    s = rod(2.0, theta, 0.0, m=m, length=length)
+    with pytest.raises(ContactParadox, match="no solution") as err:
+        simulate(s, 0.05, initial_state={"dot(x)": -1.0})
+    msg = str(err.value)
+    mu_star = (1 + 3 * math.cos(theta)**2) / (3 * math.sin(theta) * math.cos(theta))
+    assert mu_star == pytest.approx(4 / 3)
+    assert f"µ < {mu_star:.6g}" in msg
+    N = m * G / (1 + 3 * math.cos(theta)**2 - 3 * 2.0 * math.sin(theta) * math.cos(theta))
+    assert f"would be {N:.4g}" in msg
+    assert err.value.stop_reason == "no-consistent-mode"
+    # below the critical coefficient the same start slides with A closed and N > 0
+    ok = simulate(rod(1.0, theta, 0.0, m=m, length=length), 0.01, initial_state={"dot(x)": -1.0})
+    assert ok.segments[0].mode["A"] == "slip" and ok["N_A"][0] == pytest.approx(
+        m * G / (1 + 3 * math.cos(theta)**2 - 3 * math.sin(theta) * math.cos(theta)), rel=1e-9)
+
+
+# (d) stick–slip: a block on a belt, a spring to the wall, µs > µk ----------------------------------------
+def belt(m=1.0, k=10.0, v=0.5, mu_s=0.6, mu_k=0.4):
+    s = rk.System("stick-slip")
+    m_ = s.parameter("m", "kg", value=m)
+    k_ = s.parameter("k", "N/m", value=k)
+    V = s.parameter("V", "m/s", value=v)
+    g = s.parameter("g", "m/s^2", value=G)
+    ms = s.parameter("mu_s", "", value=mu_s)
+    mk = s.parameter("mu_k", "", value=mu_k)
+    x = s.coordinate("x", "stretch of the spring", kind="length", initial=0, rate=0)
+    F = s.inertial
+    P = s.point("P", s.origin, x * F.x)
+    S = s.point("S", s.origin, V * rk.t * F.x, description="a point of the belt")
+    blk = s.body("block", rk.shapes.PointMass(m_), frame=F, at=P)
+    s.contact("belt", blk, s.line(S, F.y, name="belt"), friction={"static": ms, "kinetic": mk},
+              normal_name="N", friction_name="F")
+    s.spring("spring", P, s.origin, k_, 0, body_a=blk)
+    s.gravity(g)
+    return s
+
+
+def test_stick_slip_limit_cycle_against_the_closed_form():
+    m, k, v, mu_s, mu_k = 1.0, 10.0, 0.5, 0.6, 0.4
+    cycles = 60
+    w = math.sqrt(k / m)
+    x_s, x_k = mu_s * m * G / k, mu_k * m * G / k        # slip starts at k x = µs m g; slides about x_k
+    d = x_s - x_k
+    stick = 2 * d / v                                    # carried from 2 x_k − x_s to x_s at the belt speed
+    alpha = math.atan2(v / w, d)
+    slip = (math.pi + 2 * alpha) / w                     # from x_s back to 2 x_k − x_s, where ẋ = v again
+    t_first = math.asin(v / (x_k * w)) / w               # from rest: slides until ẋ reaches v
+    t_end = t_first + cycles * (stick + slip) - slip / 2
+    res = simulate(belt(m, k, v, mu_s, mu_k), t_end, max_events=4 * cycles, n_points=201)
+    assert res.reached_end
+    ev = res.events
+    assert [e.kind for e in ev] == ["sticks", "slips"] * cycles          # no chatter: two events a cycle
+    assert ev[0].t == pytest.approx(t_first, abs=1e-9)
+    ts = np.array([e.t for e in ev])
+    sticks, slips = ts[1::2] - ts[0::2], ts[2::2] - ts[1:-1:2]
+    x1 = x_k * (1 - math.cos(w * t_first))              # where the first stick begins
+    assert sticks[0] == pytest.approx((x_s - x1) / v, abs=1e-8)
+    assert np.max(np.abs(sticks[1:] - stick)) < 1e-8    # then the limit cycle, every cycle alike
+    assert np.max(np.abs(slips - slip)) < 1e-8
+    assert all(e.state["x"] == pytest.approx(x_s, abs=1e-9) for e in ev[1::2])
+    assert all(e.state["x"] == pytest.approx(2 * x_k - x_s, abs=1e-9) for e in ev[2::2])
+
+
+def test_identical_runs_give_identical_events_bit_for_bit():
+    s = belt()
+    runs = [simulate(s, 6.0, n_points=11) for _ in range(20)]
+    ref = [(e.t, e.kind, tuple(e.state.values()), tuple(e.after.values())) for e in runs[0].events]
+    assert len(ref) >= 5
+    for r in runs[1:]:
+        assert [(e.t, e.kind, tuple(e.state.values()), tuple(e.after.values())) for e in r.events] == ref
+    fresh = simulate(belt(), 6.0, n_points=11)          # a system built again gives the same too
+    assert [(e.t, e.kind, tuple(e.state.values())) for e in fresh.events] == [r[:3] for r in ref]
+
+
+def test_block_sliding_up_a_rough_incline_comes_to_rest_and_sticks():
+    # thrown up the slope with µs ≥ tan β: it stops once and stays (no chatter, one event)
+    beta, mu_s, mu_k, v0 = 0.4, 0.6, 0.45, 2.0
+    s = incline(beta, mu_s, mu_k)
+    res = simulate(s, 2.0, initial_state={"dot(x)": -v0})
+    assert res.reached_end and [e.kind for e in res.events] == ["sticks"]
+    t_stop = v0 / (G * (math.sin(beta) + mu_k * math.cos(beta)))
+    assert res.events[0].t == pytest.approx(t_stop, abs=1e-10)
+    after = res.segment == 1
+    assert res.segments[1].mode == {"ground": "stick"}
+    assert np.all(res["dot(x)"][after] == 0.0) and np.ptp(res["x"][after]) == 0.0

@@ -293,7 +293,8 @@ def candidate_laws(solution) -> list[str]:
             out.append(f"about-point:{name}")
     if not out:
         out.append("about-point:O")
-    out += ["work-energy", "lagrange", "kane"]
+    if solution.coordinates:     # at rest (no degree of freedom) these laws have no equation to give
+        out += ["work-energy", "lagrange", "kane"]
     base = solution.method
     return [m for m in ["newton-euler"] + out if m != base]
 

@@ -26,6 +26,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..errors import InputError
 from ..model.constraints import SMOOTH, Coulomb
+from .contact_modes import decide
 from .impact import impact, mode_after
 from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
 from .result import Event, Segment, SimulationResult, build_result
@@ -182,9 +183,27 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
                              hint="Give only the independent coordinates and rates, or values that satisfy "
                                   "the constraints (a contact they would push into its surface cannot start "
                                   "closed).")
-        mode_, k, _ = hyb.settle(cand, t0, y, p)
+        # the contact problem over every touching contact: settle's repair of the candidate is tried
+        # first, then every combination in a fixed order; all of them where a contact slides (Painlevé)
+        try:
+            proposal, _, _ = hyb.settle(cand, t0, y, p)
+        except SimulationError:
+            proposal = None
+        dec = decide(hyb, t0, y, p, proposal, every=_sliding(hyb, cand, t0, y, p))
+        mode_, k = dec.mode, dec.regime
         return hyb.project_rates(mode_, t0, y, p), mode_, k
     raise InputError("no set of open and closed contacts fits the initial state.", where=system.name)
+
+
+def _sliding(hyb, mode, t_, y, p) -> bool:
+    """Whether a closed Coulomb contact slides at the state (where the contact problem may have several
+    solutions, so that every candidate is checked)."""
+    for name, c in hyb.contacts.items():
+        if mode[name] != OPEN and isinstance(c.friction, Coulomb) and c.unilateral and hyb.kin.planar:
+            _, _, s_ = hyb.contact_state(name, t_, y, p)
+            if s_ is not None and abs(s_) > 1e-9 * max(1.0, float(np.max(np.abs(y)))):
+                return True
+    return False
 
 
 def simulate(system, t_span, initial_state: Mapping | None = None, params: Mapping | None = None, *,
@@ -441,6 +460,13 @@ def _transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
         detail = (f"the friction needed at {w.name} reaches µN; it slips with slip speed "
                   f"{'positive' if w.slip_sign > 0 else 'negative'}")
+    elif w.kind == "arc":          # the contact point reaches the end of its profile's arc (model.profiles)
+        exc = SimulationError(f"the contact point of {w.name} reaches the end of its profile's arc: the edge meets "
+                              "the surface, and the model has no contact there.", where=hyb.system.name,
+                              hint="To follow the motion beyond, model the edge (or flat face) as a contact of "
+                                   "its own.")
+        exc.stop_reason = "arc-end"
+        raise exc
     else:  # "reverses"
         forced = _current_signs(hyb, model, t_, y, p)
         forced.pop(w.name, None)
