@@ -246,3 +246,91 @@ def test_a_definition_used_as_a_length_must_be_positive():
     text = CHORD.replace('[coordinates]', 'd = "l - R"\n[coordinates]').replace('length = "2*l"', 'length = "d"')
     with pytest.raises(RigidkinError, match="chord.toml, line"):
         parse_problem(text, "chord.toml")
+
+
+# 3. profiles that are arcs --------------------------------------------------------------------------------
+HALF = """
+title = "Half cylinder rocking on the floor"
+[parameters]
+m = { unit = "kg", value = 1 }
+r = { unit = "m", value = 0.1 }
+g = { unit = "m/s^2", value = 9.81 }
+[coordinates]
+theta = { sense = "rotation, counter-clockwise", initial = 0, rate = 15 }
+x = { sense = "centre of the flat face along Ex", kind = "length" }
+[frames]
+B = { angle = "theta" }
+[points]
+O1 = { offset = "x*Ex + r*Ey", description = "centre of the flat face" }
+[bodies]
+half = { shape = "half_cylinder", mass = "m", radius = "r", frame = "B", at = "O1", toward = "-y" }
+[constraints.P]
+type = "contact"
+body = "half"
+centre = "O1"
+surface = { type = "line", point = "O", normal = "Ey", name = "floor" }
+radius = "r"
+friction = "rolling"
+ARC
+[loads]
+gravity = { type = "gravity", g = "g" }
+"""
+
+
+def half_cylinder(arc: str = ""):
+    system, _ = parse_problem(HALF.replace("ARC", arc), "half.toml")
+    return system, system.coordinates[0]
+
+
+def test_half_cylinder_touches_only_on_its_curved_half():
+    """The curved face (toward −B.y) touches while the downward direction is within π/2 of −B.y:
+    (−Ey)·(−B.y) = cos θ ≥ 0."""
+    system, th = half_cylinder()
+    sol = system.solve()
+    arcs = [c for c in sol.validity if "on its arc" in c.label]
+    assert len(arcs) == 1 and sp.simplify(arcs[0].expr - sp.cos(th)) == 0
+
+
+def test_equilibria_off_the_arc_are_not_equilibria():
+    """Only θ = 0 remains (θ = π puts the contact on the missing half); rocking without slip about it:
+    ω² = m g b / I_P with b = 4r/(3π), I_P = m(3r²/2 − 2 r b), i.e. ω² = 8g/(r(9π − 16))."""
+    from rigidkin.analysis.equilibrium import equilibria
+
+    system, th = half_cylinder()
+    eqs = equilibria(system.solve())
+    assert [e.configuration[th] for e in eqs] == [0]
+    g, r = system.parameters["g"], system.parameters["r"]
+    assert sp.simplify(eqs[0].natural_frequencies[0] ** 2 - 8 * g / (r * (9 * sp.pi - 16))) == 0
+    full, th2 = half_cylinder("arc = false")
+    assert sorted(float(e.configuration[th2]) for e in equilibria(full.solve())) == [0.0, pytest.approx(np.pi)]
+
+
+def test_simulation_stops_where_the_curved_face_ends():
+    """Released at θ = 0 with θ̇0 = 15 rad/s it rolls to θ = π/2, where the edge meets the floor.
+    Energy: ½ I_P(0) θ̇0² + m g (r − b) = ½ I_P(π/2) θ̇² + m g r, I_P(π/2) = 3 m r²/2."""
+    from rigidkin.numeric.simulate import simulate
+
+    system, th = half_cylinder()
+    res = simulate(system, 2.0)
+    assert res.stop_reason == "arc-end"
+    assert res.final_state["theta"] == pytest.approx(np.pi / 2, abs=1e-8)
+    r, g = 0.1, 9.81
+    b = 4 * r / (3 * np.pi)
+    w2 = ((1.5 * r**2 - 2 * r * b) * 15**2 - 2 * g * b) / (1.5 * r**2)
+    assert res.final_state["dot(theta)"] == pytest.approx(np.sqrt(w2), rel=1e-7)
+
+
+def test_an_arc_given_in_the_file():
+    """A quarter arc each side of −B.y narrowed to π/4: the contact holds while cos θ ≥ cos(π/4)."""
+    from rigidkin.numeric.simulate import simulate
+
+    system, th = half_cylinder('arc = { toward = "-B.y", half_angle = "pi/4" }')
+    arcs = [c for c in system.solve().validity if "on its arc" in c.label]
+    assert sp.simplify(arcs[0].expr - (sp.cos(th) - sp.sqrt(2) / 2)) == 0
+    res = simulate(system, 2.0)
+    assert res.stop_reason == "arc-end" and res.final_state["theta"] == pytest.approx(np.pi / 4, abs=1e-8)
+
+
+def test_arc_toward_must_be_fixed_in_the_body():
+    with pytest.raises(RigidkinError, match="fixed in half"):
+        half_cylinder('arc = { toward = "-Ey" }')

@@ -470,4 +470,7 @@ def _conditions(setup, choices, sign_map, react):
                                    f"friction at {c.name} within {word} (no slip)", "validity"))
             valid.append(Condition(setup.kin.simplify_expr(mu * N + F), ">=",
                                    f"friction at {c.name} within {word} (no slip)", "validity"))
+    from .model.profiles import arc_margins  # a profile that is an arc: the contact point stays on it
+
+    valid.extend(Condition(m, ">=", label, "validity") for m, label in arc_margins(setup))
     return conds, valid

@@ -78,8 +78,29 @@ def equilibria(solution, limit: int = 8) -> list[Equilibrium]:
         conf = {back[k]: algebra.readable(v) for k, v in sol.items()}
         for q in qs:
             conf.setdefault(q, sp.Integer(0))
+        if _off_arc(solution, regime, conf):
+            continue            # a contact point off its profile's arc: not a configuration of the model
         out.append(linearise(solution, conf))
+    if not out:
+        raise RigidkinError("every equilibrium configuration found puts a contact point off its profile's arc "
+                            "(the curved face of a half shape does not touch there), so the model has none.")
     return out
+
+
+def _off_arc(solution, regime, conf) -> bool:
+    """True when an arc condition of the regime (model.profiles) fails at the configuration ``conf``."""
+    values = numeric_values(solution)
+    point = {**{q.diff(t): 0 for q in conf}, **conf}
+    for cond in regime.validity:
+        if "on its arc" not in cond.label:
+            continue
+        try:
+            v = _num(cond.expr.xreplace(point), values)
+        except (TypeError, ValueError):
+            continue
+        if not cond.holds(v, 1e-9):
+            return True
+    return False
 
 
 def linearise(solution, at: dict) -> Equilibrium:

@@ -542,10 +542,15 @@ class _Builder:
                       self.point(c.point_b, path + ("point_b",), True), basis, c.axis, c.prefix, c.description)
         elif isinstance(c, S.ContactSpec):
             surface = self.surface(c.surface, path + ("surface",))
+            arc = c.arc if not isinstance(c.arc, S.ArcSpec) else (
+                self.vector(c.arc.toward, path + ("arc", "toward")), self.scalar(c.arc.half_angle,
+                                                                                 path + ("arc", "half_angle")))
+            if arc is True:
+                arc = None
             self.call(path, self.s.contact, name, self.body(c.body, path + ("body",)), surface,
                       self.point(c.centre, path + ("centre",), True), self.scalar(c.radius, path + ("radius",)),
                       self.friction(c.friction, path + ("friction",)), c.unilateral, c.normal_name,
-                      c.friction_name, c.description)
+                      c.friction_name, c.description, arc=arc)
         elif isinstance(c, S.DiskContactSpec):
             self._needs("disk_contact", path)
             surface = self.surface(c.surface, path + ("surface",))

@@ -173,6 +173,13 @@ class FrictionCoefficients(Strict):
 Friction = FrictionCoefficients | Expr
 
 
+class ArcSpec(Strict):
+    """The part of a contact profile that exists: within ``half_angle`` of ``toward`` (fixed in the body)."""
+
+    toward: Expr
+    half_angle: Expr = "pi/2"
+
+
 class ContactSpec(Strict):
     type: Literal["contact"]
     body: Name
@@ -183,6 +190,7 @@ class ContactSpec(Strict):
     unilateral: bool = True
     normal_name: Name | None = None
     friction_name: Name | None = None
+    arc: ArcSpec | bool | None = None     # None: the shape's own (half shapes); false: the whole circle
     description: str = ""
 
 

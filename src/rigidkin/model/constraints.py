@@ -187,6 +187,7 @@ class Contact(Constraint):
     unilateral: bool = True
     normal_name: str | None = None
     friction_name: str | None = None
+    arc: object = None          # model.profiles.Arc: the part of the profile that exists (None: all of it)
 
     kind = "contact"
     states = ("slip", "stick", "open")

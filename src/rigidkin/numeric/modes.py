@@ -274,6 +274,9 @@ class Hybrid:
                 continue
             if c.unilateral:
                 watch(Watch("opens", name, f"contact {name} opens", -1, quantity=str(c.N)), R(c.N))
+            if getattr(c, "arc", None) is not None:        # a profile that is an arc (model.profiles)
+                watch(Watch("arc", name, f"contact {name} reaches the end of its arc", -1,
+                            quantity=f"arc margin of {name}"), c.arc.margin(c, kin))
             if st == STICK and isinstance(c.friction, Coulomb):
                 mu, N = c.friction.static, R(c.N)       # sticking holds while |F| ≤ µs N
                 if kin.planar:

@@ -467,6 +467,13 @@ def _transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
                                    "its own.")
         exc.stop_reason = "arc-end"
         raise exc
+    elif w.kind == "arc":          # the contact point reaches the end of its profile's arc (model.profiles)
+        exc = SimulationError(f"the contact point of {w.name} reaches the end of its profile's arc: the edge meets "
+                              "the surface, and the model has no contact there.", where=hyb.system.name,
+                              hint="To follow the motion beyond, model the edge (or flat face) as a contact of "
+                                   "its own.")
+        exc.stop_reason = "arc-end"
+        raise exc
     else:  # "reverses"
         forced = _current_signs(hyb, model, t_, y, p)
         forced.pop(w.name, None)
