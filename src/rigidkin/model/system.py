@@ -21,6 +21,7 @@ from .definitions import Defined, Definition
 from .definitions import define as define_quantity
 from .frames import Frame, make_reference_frame
 from .points import Point
+from .profiles import arc_for
 from .quantities import Coordinate, Parameter
 from .shapes import Shape
 from .surfaces import Circle, Line
@@ -334,8 +335,12 @@ class System:
 
     def contact(self, name: str, body, surface, centre: Point | str | None = None, radius=0,
                 friction="smooth", unilateral: bool = True, normal_name: str | None = None,
-                friction_name: str | None = None, description: str = "") -> C.Contact:
+                friction_name: str | None = None, description: str = "", arc=None) -> C.Contact:
         """A contact of ``body`` with ``surface`` through a profile (point, circle or sphere of ``radius``).
+
+        ``arc``: the part of the profile that exists, ``(toward, half_angle)`` with ``toward`` fixed in the
+        body (a half cylinder's curved face: its ``toward``, π/2 — the default for half shapes touching by
+        their curved face); ``False``: the whole circle.  Leaving the arc ends the contact's validity.
 
         ``friction``: ``"smooth"``, ``"rolling"`` (no slip), or a coefficient µ (Coulomb friction), or
         ``{"static": µs, "kinetic": µk}`` (sticks while |F| ≤ µs N, slides with µk N).
@@ -348,9 +353,10 @@ class System:
             raise ModelError("surface must be a line/plane or circle/sphere (System.line, System.circle).",
                              where=where)
         fr = _friction(friction, where)
-        con = C.Contact(name, body=b, centre=c, radius=_expr(radius, where), surface=surface, friction=fr,
+        rad = _expr(radius, where)
+        con = C.Contact(name, body=b, centre=c, radius=rad, surface=surface, friction=fr,
                         unilateral=unilateral, normal_name=normal_name, friction_name=friction_name,
-                        description=description)
+                        description=description, arc=arc_for(arc, b, c, rad, where))
         for sym in con.reactions():
             self._claim(sym.name, "reaction", owner=f"contact {name}")
         return self._add_constraint(con)
