@@ -81,11 +81,15 @@ def safe_lambdify(args: Sequence[sp.Symbol], exprs, modules="numpy", cse: bool =
     """``sympy.lambdify(args, exprs)`` with the arguments renamed to our own names first and the expressions
     checked (:func:`check_expressions`): the Python source lambdify writes holds no user text.
 
-    ``exprs`` is a list of expressions (or of lists of them, one level); the function returns the same shape.
+    ``exprs`` is a list of expressions (or of lists of them, one level), or one matrix; the function returns
+    the same shape.
     """
     args = list(args)
     new = mangled(args)
     sub = dict(zip(args, new))
+    if isinstance(exprs, sp.MatrixBase):
+        flat = [e.xreplace(sub) for e in check_expressions(list(exprs), args, where)]
+        return sp.lambdify(new, sp.Matrix(exprs.rows, exprs.cols, flat), modules=modules, cse=cse)
     nested = [isinstance(e, (list, tuple)) for e in exprs]
     flat = [x for e, n in zip(exprs, nested) for x in (e if n else [e])]
     flat = [e.xreplace(sub) for e in check_expressions(flat, args, where)]

@@ -29,6 +29,7 @@ from ..kinematics import Kinematics  # noqa: E402
 from ..model import shapes as S  # noqa: E402
 from ..model.rolling3d import DiskContact  # noqa: E402
 from ..model.surfaces import Line  # noqa: E402
+from ..numeric.codesafe import safe_lambdify  # noqa: E402
 from ..textsafe import figure_text  # noqa: E402
 from .animate import MotionAnimation  # noqa: E402
 
@@ -58,8 +59,8 @@ class Scene3D:
         self._rep = dict(zip(self.coordinates, qs))
 
         def num(M):
-            return sp.lambdify(self._args, M.xreplace(self._rep).xreplace({t: self._args[-1]}).xreplace(self.params),
-                               "numpy")
+            return safe_lambdify(self._args, M.xreplace(self._rep).xreplace({t: self._args[-1]}).xreplace(self.params),
+                                 cse=False, where="animation")
 
         def comps(v):
             return v.to_matrix(F) if v != Vector(0) else sp.zeros(3, 1)

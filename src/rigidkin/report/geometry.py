@@ -16,6 +16,7 @@ from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 
 from .. import algebra
 from ..errors import InputError
+from ..numeric.codesafe import safe_lambdify
 
 t = dynamicsymbols._t
 
@@ -74,7 +75,7 @@ class Geometry:
         self._axes = {}
         for name, b in system.bodies.items():
             cols = [self._components(v) for v in (b.frame.x, b.frame.y, b.frame.z)]
-            self._axes[name] = sp.lambdify(self._args, sp.Matrix.hstack(*cols), "numpy")
+            self._axes[name] = safe_lambdify(self._args, sp.Matrix.hstack(*cols), cse=False, where="drawing")
 
     def _view(self) -> np.ndarray:
         """Rows: the screen's right, up and depth directions for a 3D model — up against gravity (Ey if
@@ -96,7 +97,7 @@ class Geometry:
         return m.xreplace(self._qmap).xreplace({t: self._tsym}).xreplace(self.params)
 
     def _lambdify(self, v: Vector):
-        return sp.lambdify(self._args, self._components(v), "numpy")
+        return safe_lambdify(self._args, self._components(v), cse=False, where="drawing")
 
     def _vector(self, q: Mapping) -> list[float]:
         """The arguments of the numeric functions: every coordinate, then the time (key ``t``, default 0)."""
