@@ -192,6 +192,7 @@ def _assert_documents_escaped(folder: Path) -> None:
     assert "<script>document" not in page and "<img src=x" not in page and "<b>bold" not in page   # …never as markup
     assert "&lt;script&gt;" in page
     assert 'http-equiv="Content-Security-Policy"' in page and "default-src 'none'" in page
+    assert "script-src" not in page                               # no animation: no script may run at all
     md = (folder / "report.md").read_text()
     assert md.count(TAG) >= 5
     assert "<script" not in md and "<img" not in md and "<b>" not in md

@@ -3,8 +3,9 @@
 Everything the page shows is inside the one file: formulas are presentation MathML (rendered by the
 browser itself, no script), figures are PNG data URIs, the animation is matplotlib's HTML5 player
 with its frames embedded.  A content security policy forbids every fetch, so the page cannot reach
-the network even by accident.  Every piece of text is escaped (:func:`rigidkin.textsafe.html_text`);
-formulas are built as XML elements whose text the DOM escapes.
+the network even by accident, and forbids every script unless the page holds the animation player.
+Every piece of text is escaped (:func:`rigidkin.textsafe.html_text`), formulas' text too
+(:mod:`rigidkin.report.notation`).
 """
 
 from __future__ import annotations
@@ -17,6 +18,8 @@ from .document import Animation, Document, Equations, Figure, Math, Paragraph, S
 from .notation import mathml, mathml_condition
 
 CSP = "default-src 'none'; img-src data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'"
+#: The policy of a page without an animation: no script at all.
+CSP_NO_SCRIPT = "default-src 'none'; img-src data:; style-src 'unsafe-inline'"
 
 STYLE = """
 body { font-family: "DejaVu Serif", Georgia, serif; margin: 0; color: #1b1b1b; background: #fafafa; }
@@ -109,8 +112,9 @@ def to_html(doc: Document) -> str:
     for i, s in enumerate(doc.sections):
         blocks = "\n".join(_block(b) for b in s.blocks)
         body.append(f'<section id="{_esc(s.key)}"><h2>{i + 1}. {_esc(s.title)}</h2>\n{blocks}\n</section>')
+    scripts = any(isinstance(b, Animation) for s in doc.sections for b in s.blocks)
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f'<meta http-equiv="Content-Security-Policy" content="{CSP}">'
+            f'<meta http-equiv="Content-Security-Policy" content="{CSP if scripts else CSP_NO_SCRIPT}">'
             '<meta name="viewport" content="width=device-width, initial-scale=1">'
             f"<title>{_esc(doc.title)}</title><style>{STYLE}</style></head>\n<body>"
             f'<header><h1>{_esc(doc.title)}</h1><p class="subtitle">{_esc(doc.subtitle)}</p><nav>{nav}</nav></header>'
