@@ -334,3 +334,112 @@ def test_an_arc_given_in_the_file():
 def test_arc_toward_must_be_fixed_in_the_body():
     with pytest.raises(RigidkinError, match="fixed in half"):
         half_cylinder('arc = { toward = "-Ey" }')
+
+
+# 4. ropes over pulleys with inertia -------------------------------------------------------------------------
+def _hanging(s, name, x, depth, mass):
+    """A block (a point mass) hanging at abscissa ``x`` and depth ``depth`` below the axle line."""
+    P = s.point(name, offset=x * s.inertial.x - depth * s.inertial.y)
+    s.body(f"block_{name}", rk.shapes.PointMass(mass), frame=s.inertial, at=P)
+    return P
+
+
+def test_atwood_machine_with_a_massive_pulley():
+    """Disk pulley (M, R) on a fixed axle, blocks m1 (left) and m2 (right), no slip:
+    ÿ1 = (m1 − m2) g/(m1 + m2 + M/2), T1 = m1 (g − ÿ1), T2 = m2 (g + ÿ1); R φ̇ = ẏ1 = −ẏ2."""
+    from rigidkin.model.ropes import Wrap
+
+    s = rk.System("atwood")
+    m1, m2, M = s.parameter("m1", "kg", value=3), s.parameter("m2", "kg", value=1), s.parameter("M", "kg", value=2)
+    R, g = s.parameter("R", "m", value=0.1), s.parameter("g", "m/s^2", value=9.81)
+    y1 = s.coordinate("y1", "depth of block 1 below the axle", kind="length", initial=1.0)
+    y2 = s.coordinate("y2", "depth of block 2 below the axle", kind="length", initial=1.0)
+    phi = s.coordinate("phi", "pulley rotation, counter-clockwise")
+    pulley = s.body("pulley", rk.shapes.Disk(M, R), frame=s.frame("P", angle=phi), at=s.origin)
+    A, B = _hanging(s, "A", -R, y1, m1), _hanging(s, "B", R, y2, m2)
+    s.pin("O", s.origin, pulley)
+    s.rope("rope", [A, Wrap(pulley, R, "cw"), B], tensions=("T1", "T2"))
+    s.gravity(g)
+    sol = s.solve()
+    a = (m1 - m2) * g / (m1 + m2 + M / 2)
+    assert sp.simplify(sol.accelerations[y1] - a) == 0
+    assert sp.simplify(sol.reactions["T1"] - m1 * (g - a)) == 0
+    assert sp.simplify(sol.reactions["T2"] - m2 * (g + a)) == 0
+    assert sp.simplify(sol.rate_relations[phi.diff(t)] - y1.diff(t) / R) == 0
+    assert sol.check().ok and sol.warnings == ()
+    taut = [c for c in sol.validity if "taut" in c.label]
+    assert len(taut) == 2
+
+
+def test_block_hoisted_by_a_drum():
+    """Drum (I = M ρ²/2, torque τ counter-clockwise) winding the rope of a block m hanging on its right:
+    ÿ = (m g − τ/ρ)/(m + I/ρ²) (y downward), T = m (g − ÿ)."""
+    from rigidkin.model.ropes import Wrap
+
+    s = rk.System("hoist")
+    m, M = s.parameter("m", "kg", value=10), s.parameter("M", "kg", value=4)
+    rho, g, tau = s.parameter("rho", "m", value=0.2), s.parameter("g", "m/s^2", value=9.81), \
+        s.parameter("tau", "N*m", value=30)
+    y = s.coordinate("y", "depth of the block below the axle", kind="length", initial=2.0)
+    phi = s.coordinate("phi", "drum rotation, counter-clockwise")
+    drum = s.body("drum", rk.shapes.Disk(M, rho), frame=s.frame("D", angle=phi), at=s.origin)
+    A = _hanging(s, "A", rho, y, m)
+    s.pin("O", s.origin, drum)
+    s.torque("motor", drum, tau * s.inertial.z)
+    s.rope("rope", [A, Wrap(drum, rho, "ccw")], tensions=("T",))
+    s.gravity(g)
+    sol = s.solve()
+    I = M * rho**2 / 2
+    a = (m * g - tau / rho) / (m + I / rho**2)
+    assert sp.simplify(sol.accelerations[y] - a) == 0
+    assert sp.simplify(sol.reactions["T"] - m * (g - a)) == 0
+    assert sol.check().ok
+
+
+def test_two_pulleys_fixed_and_moving():
+    """Rope from a ceiling anchor down round a moving pulley (M2, r2: its own weight), up over a fixed pulley
+    (M1, r1) and down to a block m.  No slip: r2 φ̇2 = −ẏ2, r1 φ̇1 = 2ẏ2, ẏ3 = −2ẏ2.  With I = M r²/2:
+    ÿ2 = (M2 − 2m) g/(M2 + 4m + 4 I1/r1² + I2/r2²), T3 = m(g + 2ÿ2), T2 = T3 + 2 I1 ÿ2/r1²,
+    T1 = T2 + I2 ÿ2/r2²."""
+    from rigidkin.model.ropes import Wrap
+
+    s = rk.System("two-pulleys")
+    m, M1, M2 = (s.parameter(n, "kg", value=v) for n, v in (("m", 1.0), ("M1", 2.0), ("M2", 5.0)))
+    r1, r2, g = s.parameter("r1", "m", value=0.1), s.parameter("r2", "m", value=0.15), \
+        s.parameter("g", "m/s^2", value=9.81)
+    y2 = s.coordinate("y2", "depth of the moving pulley's centre", kind="length", initial=1.0)
+    y3 = s.coordinate("y3", "depth of the block", kind="length", initial=1.0)
+    phi1 = s.coordinate("phi1", "fixed pulley, counter-clockwise")
+    phi2 = s.coordinate("phi2", "moving pulley, counter-clockwise")
+    F = s.inertial
+    p1 = s.body("p1", rk.shapes.Disk(M1, r1), frame=s.frame("P1", angle=phi1), at=s.origin)
+    C2 = s.point("C2", offset=-(r1 + r2) * F.x - y2 * F.y)
+    p2 = s.body("p2", rk.shapes.Disk(M2, r2), frame=s.frame("P2", angle=phi2), at=C2)
+    anchor = s.point("A", offset=-(r1 + 2 * r2) * F.x)
+    B = _hanging(s, "B", r1, y3, m)
+    s.pin("O", s.origin, p1)
+    s.rope("rope", [anchor, Wrap(p2, r2, "ccw"), Wrap(p1, r1, "cw"), B], tensions=("T1", "T2", "T3"))
+    s.gravity(g)
+    sol = s.solve(independent=[y2])
+    I1, I2 = M1 * r1**2 / 2, M2 * r2**2 / 2
+    a = (M2 - 2 * m) * g / (M2 + 4 * m + 4 * I1 / r1**2 + I2 / r2**2)
+    T3 = m * (g + 2 * a)
+    T2 = T3 + 2 * I1 * a / r1**2
+    T1 = T2 + I2 * a / r2**2
+    assert sp.simplify(sol.accelerations[y2] - a) == 0
+    for name, expected in (("T1", T1), ("T2", T2), ("T3", T3)):
+        assert sp.simplify(sol.reactions[name] - expected) == 0, name
+    assert sp.simplify(sol.rate_relations[y3.diff(t)] + 2 * y2.diff(t)) == 0
+    assert sol.warnings == ()
+
+
+def test_rope_errors_name_the_problem():
+    from rigidkin.model.ropes import Wrap
+
+    s, disk, T, th, m, r = rolling_disk()
+    with pytest.raises(rk.ModelError, match="tension names"):
+        s.rope("r1", [s.origin, Wrap(disk, r, "cw"), s.origin], tensions=("T1",))
+    with pytest.raises(rk.ModelError, match="end T of the rope moves relative to the ground"):
+        s.rope("r2", [s.origin, Wrap(disk, r, "cw"), T])
+    with pytest.raises(rk.ModelError, match="'cw' or 'ccw'"):
+        s.rope("r3", [s.origin, Wrap(disk, r, "left")])

@@ -419,6 +419,17 @@ class System:
         self._claim(con.T.name, "reaction", owner=f"cable {name}")
         return self._add_constraint(con)
 
+    def rope(self, name: str, path, tensions=None, description: str = ""):
+        """A rope over pulleys with inertia that it does not slip on: ``path`` = end, Wrap(pulley, radius,
+        "cw"|"ccw"), …, end (see :mod:`rigidkin.model.ropes`); one tension per straight segment, each ≥ 0."""
+        from .ropes import build_rope
+
+        self._claim(name, "constraint", "constraint")
+        con = build_rope(self, name, path, tensions, description)
+        for sym in con.reactions():
+            self._claim(sym.name, "reaction", owner=f"rope {name}")
+        return self._add_constraint(con)
+
     # loads -------------------------------------------------------------------------------------
     def _add_load(self, load):
         self._claim(load.name, "load", "load")
