@@ -443,3 +443,56 @@ def test_rope_errors_name_the_problem():
         s.rope("r2", [s.origin, Wrap(disk, r, "cw"), T])
     with pytest.raises(rk.ModelError, match="'cw' or 'ccw'"):
         s.rope("r3", [s.origin, Wrap(disk, r, "left")])
+
+
+ATWOOD_FILE = """
+title = "Atwood machine with a massive pulley"
+[parameters]
+m1 = { unit = "kg", value = 3 }
+m2 = { unit = "kg", value = 1 }
+M = { unit = "kg", value = 2 }
+R = { unit = "m", value = 0.1 }
+g = { unit = "m/s^2", value = 9.81 }
+[coordinates]
+y1 = { sense = "depth of block 1 below the axle", kind = "length", initial = 1, rate = 0 }
+y2 = { sense = "depth of block 2 below the axle", kind = "length", initial = 1 }
+phi = { sense = "pulley rotation, counter-clockwise" }
+[frames]
+P = { angle = "phi" }
+[points]
+A = { offset = "-R*Ex - y1*Ey" }
+B = { offset = "R*Ex - y2*Ey" }
+[bodies]
+pulley = { shape = "disk", mass = "M", radius = "R", frame = "P", at = "O" }
+block1 = { shape = "point_mass", mass = "m1", frame = "F", at = "A" }
+block2 = { shape = "point_mass", mass = "m2", frame = "F", at = "B" }
+[constraints]
+axle = { type = "pin", point = "O", body_a = "pulley" }
+rope = { type = "rope", path = ["A", { pulley = "pulley", radius = "R", sense = "cw" }, "B"], tensions = ["T1", "T2"] }
+[loads]
+gravity = { type = "gravity", g = "g" }
+"""
+
+
+def test_rope_in_a_problem_file_solved_and_simulated():
+    """ÿ1 = (m1 − m2) g/(m1 + m2 + M/2) = 2g/5 with the values; from rest y1(t) = 1 + ÿ1 t²/2."""
+    from rigidkin.numeric.simulate import simulate
+    from rigidkin.report.text import problem_text
+
+    system, _ = parse_problem(ATWOOD_FILE, "atwood.toml")
+    sol = system.solve()
+    m1, m2, M, g = (system.parameters[n] for n in ("m1", "m2", "M", "g"))
+    y1 = system.coordinates[0]
+    assert sp.simplify(sol.accelerations[y1] - (m1 - m2) * g / (m1 + m2 + M / 2)) == 0
+    assert "T1: tension of rope rope between A and pulley" in problem_text(sol)
+    res = simulate(system, 0.5)
+    assert res.final_state["y1"] == pytest.approx(1 + 0.5 * (2 * 9.81 / 5) * 0.25, rel=1e-9)
+
+
+def test_rope_file_errors_name_the_field():
+    bad = ATWOOD_FILE.replace('sense = "cw"', 'sense = "left"')
+    with pytest.raises(RigidkinError, match="atwood.toml, line"):
+        parse_problem(bad, "atwood.toml")
+    bad = ATWOOD_FILE.replace('{ pulley = "pulley"', '{ pulley = "wheel"')
+    with pytest.raises(RigidkinError, match="no body named 'wheel'"):
+        parse_problem(bad, "atwood.toml")

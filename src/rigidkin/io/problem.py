@@ -567,6 +567,19 @@ class _Builder:
                           for i, b in enumerate(c.bodies)]
             self.call(path, self.s.cable, name, points, self.scalar(c.length, path + ("length",)), bodies,
                       c.tension_name, c.description)
+        elif isinstance(c, S.RopeSpec):
+            from ..model.ropes import Wrap
+
+            stations = []
+            for i, st in enumerate(c.path):
+                here = path + ("path", i)
+                if isinstance(st, S.WrapSpec):
+                    stations.append(Wrap(self.body(st.pulley, here + ("pulley",)),
+                                         self.scalar(st.radius, here + ("radius",)), st.sense,
+                                         self.point(st.centre, here + ("centre",), True)))
+                else:
+                    stations.append(self.point(st, here))
+            self.call(path, self.s.rope, name, stations, c.tensions, c.description)
         else:
             self.call(path, self.s.collar, name, self.body(c.body, path + ("body",)),
                       self.vector(c.along, path + ("along",)), self.point(c.through, path + ("through",), True),

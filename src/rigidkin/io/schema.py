@@ -235,7 +235,25 @@ class CableSpec(Strict):
     description: str = ""
 
 
-ConstraintSpec = Annotated[PinSpec | ContactSpec | CollarSpec | DiskContactSpec | CableSpec,
+class WrapSpec(Strict):
+    """A pulley (or drum) a rope goes round without slipping: ``{ pulley = "wheel", radius = "R", sense = "cw" }``."""
+
+    pulley: Name
+    radius: Expr
+    sense: Literal["cw", "ccw"] = "cw"
+    centre: Name | None = None
+
+
+class RopeSpec(Strict):
+    """A rope from a point over pulleys with inertia to a point (or a drum), one tension per segment."""
+
+    type: Literal["rope"]
+    path: list[Name | WrapSpec] = Field(min_length=2)
+    tensions: list[Name] | None = None
+    description: str = ""
+
+
+ConstraintSpec = Annotated[PinSpec | ContactSpec | CollarSpec | DiskContactSpec | CableSpec | RopeSpec,
                            Field(discriminator="type")]
 
 

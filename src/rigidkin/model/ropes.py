@@ -77,6 +77,11 @@ class Rope(Constraint):
     def reactions(self):
         return self.tensions
 
+    def reaction_label(self, sym) -> str:
+        """``tension of rope r between A and pulley``: what each reaction is, for printed results."""
+        k = self.tension_names.index(sym.name)
+        return f"tension of rope {self.name} between {self.stations[k].label} and {self.stations[k + 1].label}"
+
     def segment(self, kin, k: int) -> tuple[Vector, Vector, Vector]:
         """(e, Q_k, Q_{k+1}): the direction and tangent points of segment k (positions from the origin)."""
         si, sj = self.stations[k], self.stations[k + 1]

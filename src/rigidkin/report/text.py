@@ -60,6 +60,8 @@ def reaction_labels(system) -> dict[str, str]:
             elif kind == "collar":
                 what = "track normal force" if name.startswith(c.N.name) else "track reaction couple"
                 label = f"{what} of collar {c.name}" + (_along(dirs[sym]) if sym in dirs else "")
+            elif hasattr(c, "reaction_label"):        # e.g. a rope: the tension of each segment
+                label = c.reaction_label(sym)
             elif kind == "pin" and name[-1:] in ("x", "y", "z"):
                 frame = getattr(c, "basis_frame", None) or system.inertial
                 label = f"pin reaction of {c.name} along {frame.basis['xyz'.index(name[-1])]}"
