@@ -56,8 +56,13 @@ def _compiled(solution, regime):
     closed = sp.Matrix([regime.reactions[n] for n in names]) if names else sp.Matrix([])
     accels = [q.diff(t, 2) for q in solution.coordinates]
     present = {s for e in solution.equations for s in e.expr.free_symbols}
+    equations = solution.equations
+    if names and not any(s.name in names for s in present):
+        # Lagrange's and Kane's equations have no reactions: they come from Euler's laws, same mode
+        equations = solution.system.solve(mode=dict(solution.states)).equations
+        present = {s for e in equations for s in e.expr.free_symbols}
     react_syms = sorted((s for s in present if s.name in names), key=str)
-    exprs = [e.expr.xreplace(dict(regime.signs)) for e in solution.equations]
+    exprs = [e.expr.xreplace(dict(regime.signs)) for e in equations]
     A, b = linear_form(exprs, accels + react_syms)
     plain, back = algebra.plain_state(closed if names else sp.Matrix([0]))
     pA, backA = algebra.plain_state(A.row_join(b))
@@ -98,6 +103,8 @@ def reactions_at(solution, state: Mapping, values: Mapping | None = None, regime
     names, react_syms, syms, back, f_closed, f_lin, n_acc = _compiled(solution, regime)
     if not names:
         return {}
+    if any(isinstance(back.get(s), sp.Derivative) and back[s].derivative_count == 2 for s in syms):
+        full.update(accelerations_at(solution, full, params, regime))   # reactions written with q̈
     args = _arguments(syms, back, full, params)
     with np.errstate(all="ignore"):
         closed = np.array(f_closed(0.0, *args), dtype=complex).ravel()
@@ -129,3 +136,26 @@ def _numeric(f_lin, args, names, react_syms, n_acc):
     x, *_ = np.linalg.lstsq(A, b, rcond=None)
     by_name = {str(s): x[n_acc + i] for i, s in enumerate(react_syms)}
     return np.array([by_name.get(n, 0.0) for n in names], dtype=float)
+
+
+def accelerations_at(solution, state: Mapping, values: Mapping | None = None, regime=None) -> dict:
+    """q̈ (as {q̈: number}) at ``state`` from M q̈ = f solved numerically."""
+    full, params = full_state(solution, state, values)
+    if regime is None:
+        regime = solution.regimes[0] if len(solution.regimes) == 1 else \
+            solution.regime_at({**full, **params})
+    key = ("acc", id(solution), id(regime))
+    hit = _CACHE.get(key)
+    if hit is None or hit[0] is not regime:
+        plain, back = algebra.plain_state(regime.mass_matrix.row_join(regime.forcing))
+        syms = sorted(plain.free_symbols - {t}, key=str)
+        hit = (regime, (syms, back, sp.lambdify([t] + syms, plain, "numpy")))
+        _CACHE[key] = hit
+    syms, back, fn = hit[1]
+    with np.errstate(all="ignore"):
+        Mf = np.array(fn(0.0, *_arguments(syms, back, full, params)), dtype=float)
+    n = Mf.shape[0]
+    if n == 0:
+        return {}
+    x = np.linalg.solve(Mf[:, :n], Mf[:, n])
+    return {q.diff(t, 2): float(v) for q, v in zip(solution.coordinates, x)}

@@ -58,10 +58,11 @@ def special_states(coords, rng: random.Random) -> list[dict]:
 
 
 class _Probe:
-    """Numeric copies of a matrix at one random state and at the special states."""
+    """Numeric copies of a matrix at one random state and at the special states (the right-hand side,
+    which may be large, is not needed to choose pivots)."""
 
-    def __init__(self, A: sp.Matrix, b: sp.Matrix, seed: int):
-        plain, back = algebra.plain_state(A.row_join(b))
+    def __init__(self, A: sp.Matrix, seed: int):
+        plain, back = algebra.plain_state(A)
         syms = sorted(plain.free_symbols - {t}, key=str)
         coords = sorted((s for s, f in back.items() if not isinstance(f, sp.Derivative)), key=str)
         rng = random.Random(seed)
@@ -69,8 +70,7 @@ class _Probe:
         points = [base] + [{**base, **st} for st in special_states(coords, rng)]
         fn = sp.lambdify([t] + syms, plain, "numpy")
         with np.errstate(all="ignore"):
-            self.mats = np.array([np.array(fn(0.41, *[p[s] for s in syms]), dtype=complex)[:, :A.cols]
-                                  for p in points])
+            self.mats = np.array([np.array(fn(0.41, *[p[s] for s in syms]), dtype=complex) for p in points])
         self.scale = max(1.0, float(np.nanmax(np.abs(self.mats[0])))) if self.mats[0].size else 1.0
 
     def zero_at(self, i: int, j: int) -> int:
@@ -100,7 +100,7 @@ def solve_linear(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, symmetri
     """
     nrows, n = A.shape
     A, b = A.as_mutable(), b.as_mutable()
-    probe = _Probe(A, b, seed)
+    probe = _Probe(A, seed)
 
     def state_dependent(i, j):
         return bool(_state_functions(A[i, j]))

@@ -64,7 +64,11 @@ class Condition:
 
 @dataclass(frozen=True)
 class Regime:
-    """The equations of motion and reactions under one set of sign conditions."""
+    """The equations of motion and reactions under one set of sign conditions.
+
+    ``reactions`` are functions of the state; with more than ``READABLE_DOF`` degrees of freedom they
+    are written in terms of the accelerations q̈ too (from M q̈ = f: ``Solution.reactions_at`` does it).
+    """
 
     conditions: tuple[Condition, ...]
     validity: tuple[Condition, ...]
@@ -332,11 +336,13 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
         def solved_reactions():
             if not reactions:          # a free body: no reaction to solve for
                 return {str(r): sp.Integer(0) for r in missing}
-            acc = accel_map
+            # above READABLE_DOF the closed-form q̈ is too large to read (or to build quickly): the reactions
+            # are given in terms of q̈, which M q̈ = f gives at any state
+            acc = accel_map if len(accel_syms) <= READABLE_DOF else {q: q.diff(t, 2) for q in red.independent}
             rhs = -b - A.extract(list(range(A.rows)), list(range(len(accel_syms)))) * sp.Matrix(
                 [acc[q] for q in red.independent]) if accel_syms else -b      # 0 DOF: statics
             Al = A.extract(list(range(A.rows)), list(range(len(accel_syms), len(unknowns))))
-            _determinacy(Al, rhs, reactions, [e.label for e in equations], dof_note)
+            # determinate and consistent: checked for all the unknowns together above
             lam = solve_linear(Al, rhs, simplify=kin.simplify_expr)
             out = {str(r): v for r, v in zip(reactions, lam)}
             out.update({str(r): sp.Integer(0) for r in missing})
@@ -344,7 +350,10 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
 
         accel_map, react_map = LazyMap(accelerations), LazyMap(solved_reactions)
         how = ("the accelerations from the reaction-free equations M q̈ = f; then the reactions from the "
-               "balance equations with the accelerations known.")
+               "balance equations with the accelerations known"
+               + (" (written in terms of q̈: with more than "
+                  f"{READABLE_DOF} degrees of freedom the closed-form q̈ is too large to read)."
+                  if len(accel_syms) > READABLE_DOF else "."))
     conditions, validity = _conditions(setup, choices, sign_map, react_map)
     if sign_map:
         trace.add("Solving", "Regime", [], " and ".join(str(c) for c in conditions))

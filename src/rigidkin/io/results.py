@@ -25,12 +25,24 @@ def _condition(c) -> dict:
 
 
 def regime_data(regime) -> dict:
-    """One regime: its conditions, validity, equations of motion, accelerations and reactions."""
+    """One regime: its conditions, validity, equations of motion, mass matrix and forcing (M q̈ = f),
+    accelerations and reactions.
+
+    With more than ``READABLE_DOF`` degrees of freedom the accelerations are ``null`` unless they were
+    computed (M q̈ = f gives them; their closed form is too large to be data anyone reads), and the
+    reactions are written in terms of q̈.
+    """
+    from ..solution import READABLE_DOF, LazyMap
+
+    acc = regime.accelerations
+    large = regime.mass_matrix.rows > READABLE_DOF and isinstance(acc, LazyMap) and not acc.computed
     return {
         "conditions": [_condition(c) for c in regime.conditions],
         "validity": [_condition(c) for c in regime.validity],
         "eom": [_s(e) for e in regime.eom],
-        "accelerations": {q.func.__name__: _s(a) for q, a in regime.accelerations.items()},
+        "mass_matrix": [[_s(x) for x in regime.mass_matrix.row(i)] for i in range(regime.mass_matrix.rows)],
+        "forcing": [_s(x) for x in regime.forcing],
+        "accelerations": None if large else {q.func.__name__: _s(a) for q, a in acc.items()},
         "reactions": {k: _s(v) for k, v in regime.reactions.items()},
     }
 

@@ -100,8 +100,14 @@ def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
         for i, e in enumerate(r.eom, start=1):
             out += [f"{_INDENT}({i})  {text(e)} = 0", ""]
         out.append("Accelerations")
-        for q, a in r.accelerations.items():
-            out.append(f"{_INDENT}{text(q.diff(t, 2))} = {text(a)}")
+        from ..solution import READABLE_DOF, LazyMap
+
+        if len(r.eom) > READABLE_DOF and isinstance(r.accelerations, LazyMap) and not r.accelerations.computed:
+            out.append(f"{_INDENT}from M q̈ = f (the equations above): with more than {READABLE_DOF} degrees of "
+                       "freedom their closed form is too large to read; the reactions below are in terms of q̈")
+        else:
+            for q, a in r.accelerations.items():
+                out.append(f"{_INDENT}{text(q.diff(t, 2))} = {text(a)}")
         out.append("")
     shown = [k for k in (reactions if reactions is not None else r.reactions) if k in r.reactions]
     if shown:
