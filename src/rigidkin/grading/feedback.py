@@ -1,0 +1,130 @@
+"""Naming what is wrong in a step: the term that is missing or extra, a sign, a coefficient, a dimension.
+
+The student's equation and the engine's (``= 0``) are compared term by term after expanding both in
+the unknowns and scaling the engine's by the factor that matches the most terms (a student may divide
+by l or multiply by 12): a term of the student's that is the engine's with the opposite sign is a sign
+error, one with another number in front a wrong coefficient, one the engine does not have is extra, one
+the engine has that the student does not is missing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from .. import algebra
+from ..printing import text
+
+t = dynamicsymbols._t
+MAX_PAIRS = 600
+
+
+@dataclass(frozen=True)
+class TermDiff:
+    scale: sp.Expr
+    matched: int
+    signs: tuple          # student's terms whose sign is wrong
+    coefficients: tuple   # (student's term, engine's term) with another numeric coefficient
+    extra: tuple          # student's terms the engine does not have
+    missing: tuple        # engine's terms (scaled) the student does not have
+
+    @property
+    def score(self) -> int:
+        return self.matched * 2 + len(self.signs) + len(self.coefficients) - len(self.extra) - len(self.missing)
+
+    def describe(self) -> list[str]:
+        out = []
+        for u in self.signs:
+            out.append(f"sign: the term {text(u)} has the wrong sign")
+        for u, r in self.coefficients:
+            out.append(f"coefficient: the term {text(u)} should be {text(r)}")
+        for r in self.missing:
+            out.append(f"missing term: {text(r)}")
+        for u in self.extra:
+            out.append(f"extra term: {text(u)}")
+        return out
+
+
+def _terms(e) -> list:
+    e = sp.expand(sp.sympify(e))
+    return [] if e == 0 else list(sp.Add.make_args(e))
+
+
+def _same(a, b) -> bool:
+    d = sp.expand(a - b)
+    return d == 0 or sp.cancel(d) == 0
+
+
+def _constant(c) -> bool:
+    return c != 0 and not algebra.functions_of_time(c) and not c.has(t) and not c.atoms(sp.Derivative)
+
+
+def term_diff(student, engine) -> TermDiff | None:
+    """The term-by-term comparison of two equations ``= 0`` (None when too large to pair up)."""
+    U, R = _terms(student), _terms(engine)
+    if not U or not R or len(U) * len(R) > MAX_PAIRS:
+        return None
+    scales = []
+    for u in U:
+        for r in R:
+            try:
+                c = sp.cancel(u / r)
+            except (sp.PolynomialError, ZeroDivisionError):
+                continue
+            if _constant(c):
+                for cand in (c, -c):
+                    if not any(_same(cand, s) for s in scales):
+                        scales.append(cand)
+    best = None
+    for c in scales[:40] or [sp.Integer(1)]:
+        d = _pair(U, [sp.expand(c * r) for r in R], c)
+        if best is None or d.score > best.score:
+            best = d
+    return best
+
+
+def _pair(U, R, scale) -> TermDiff:
+    left_u, left_r = list(U), list(R)
+    matched = 0
+    for u in list(left_u):
+        for r in left_r:
+            if _same(u, r):
+                left_u.remove(u)
+                left_r.remove(r)
+                matched += 1
+                break
+    signs, coeffs = [], []
+    for u in list(left_u):
+        for r in left_r:
+            if _same(u, -r):
+                signs.append(u)
+                left_u.remove(u)
+                left_r.remove(r)
+                break
+    for u in list(left_u):
+        for r in left_r:
+            ratio = sp.cancel(u / r)
+            if ratio.is_number and ratio != 0:
+                coeffs.append((u, r))
+                left_u.remove(u)
+                left_r.remove(r)
+                break
+    return TermDiff(scale, matched, tuple(signs), tuple(coeffs), tuple(left_u), tuple(left_r))
+
+
+def dimension_problem(ref, lhs, rhs) -> str | None:
+    """The first dimensionally inconsistent term of ``lhs = rhs``, in words (None: consistent)."""
+    from ..analysis.dimensions import check_equation, symbol_dimensions
+
+    try:
+        rep = check_equation(lhs, rhs, symbol_dimensions(ref.system, ref.setup), "claim")
+    except Exception:      # an expression the dimension rules do not cover is not a verdict
+        return None
+    if rep.consistent or not rep.offending:
+        return None
+    term, dim, why = rep.offending[0]
+    if dim is None:
+        return f"dimension: the term {text(term)} is not dimensionally consistent ({why})"
+    return f"dimension: the term {text(term)} has dimension {dim} while {why}"

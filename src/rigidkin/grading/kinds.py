@@ -1,0 +1,308 @@
+"""Grading the steps that are not balance equations: kinematics, free-body diagrams and answers.
+
+* ``kinematics``: ``claim = "v_A = ..."``, ``"a_G = ..."``, ``"omega_R = ..."`` or ``"alpha_rod = ..."``
+  (a point, or a frame or body for ω and α; a body's name as a point means its mass centre), the right
+  side a vector in any of the problem's bases.  Compared with the engine's vector at random states; a
+  wrong one is matched against the common mistakes (a transport term missing ...), else each component
+  along the basis the student wrote in is named.
+* ``fbd``: ``claim = "-m*g*Ey at G; N_A*Ex at A; N_B*Ey at B"`` (``@`` for ``at``; an item without a point
+  is a couple), ``body`` naming the body (optional with one body).  Each load is matched with the
+  engine's diagram: same vector, and a point on the same line of action; the rest is named (missing,
+  extra, wrong sign, wrong point).
+* ``answer``: ``question = "NAME"``, ``claim`` a value (an expression in the parameters, a number, or a
+  number with a unit, ``"48.19 deg"``), compared with the engine's answer (relative tolerance
+  ``tolerance``, default 0.5 % for numbers).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import sympy as sp
+from sympy.physics.vector import Vector, dynamicsymbols
+
+from ..errors import InputError
+from ..printing import text
+from . import space
+from .engine import Reference
+from .mistakes import kinematic_variants
+from .steps import CORRECT, INCORRECT, Carried, StepResult, read
+from .worksheet import Step
+
+t = dynamicsymbols._t
+_LHS = re.compile(r"^\s*(v|a|omega|w|alpha)_([A-Za-z][A-Za-z0-9_]*)\s*=")
+ANSWER_RTOL = 5e-3
+
+
+def _vector_values(ref: Reference, v: Vector, regime=None) -> np.ndarray:
+    comps = [space.to_plain(ref.scalar(v.dot(e), regime)) for e, _ in ref.axes()] if v != Vector(0) else []
+    if not comps:
+        return np.zeros((ref.sampler.n, len(ref.axes())))
+    return ref.sampler.evaluate(comps)
+
+
+def same_vector(ref: Reference, a: Vector, b: Vector) -> bool:
+    va, vb = _vector_values(ref, a), _vector_values(ref, b)
+    return bool(space.vanishes(va - vb, np.abs(va) + np.abs(vb)))
+
+
+def _basis_of(ref: Reference, v: Vector):
+    frames = [fr for fr in ref.system.frames.values()
+              if v != Vector(0) and any(f is fr.ref for _, f in v.args)]
+    fr = frames[0] if frames else ref.system.inertial
+    axes = [(fr.x, fr.basis[0]), (fr.y, fr.basis[1]), (fr.z, fr.basis[2])]
+    return axes[:2] if ref.kin.planar else axes
+
+
+def grade_kinematics(ref: Reference, st: Step, carried: Carried) -> StepResult:
+    from ..io.expressions import parse_vector
+
+    m = _LHS.match(st.claim)
+    if not m:
+        raise _unreadable("a kinematics claim reads 'v_P = ...', 'a_P = ...', 'omega_R = ...' or 'alpha_R = ...' "
+                          "(P a point or a body, R a frame or a body)")
+    what, name = m.group(1), m.group(2)
+    rhs = st.claim[m.end():]
+    student = read("vector", parse_vector, rhs, ref.scope, st.where)
+    kin = ref.kin
+    res = StepResult(st.index, st.kind, INCORRECT)
+    body = None
+    if what in ("v", "a"):
+        P = ref.point_of(name)
+        if P is None:
+            raise InputError(f"the problem has no point or body named '{name}'.", where=st.where,
+                             hint=f"Points: {', '.join(ref.system.points)}; bodies: {', '.join(ref.system.bodies)}.")
+        engine = ref.setup.vector(kin.velocity(P) if what == "v" else kin.acceleration(P))
+        body = next((b for b in ref.system.bodies.values() if b.centre is P), None)
+        label = f"{what}_{name}"
+    else:
+        frame = ref.system.frames.get(name) or (ref.system.bodies[name].frame if name in ref.system.bodies else None)
+        if frame is None:
+            raise InputError(f"the problem has no frame or body named '{name}'.", where=st.where,
+                             hint=f"Frames: {', '.join(ref.system.frames)}; bodies: {', '.join(ref.system.bodies)}.")
+        engine = ref.setup.vector(kin.omega(frame) if what in ("omega", "w") else kin.alpha(frame))
+        body = next((b for b in ref.system.bodies.values() if b.frame is frame), None)
+        label = f"{'ω' if what in ('omega', 'w') else 'α'}_{name}"
+    res.expected = f"{label} = {_vec_text(ref, engine, student)}"
+    if same_vector(ref, student, engine):
+        res.verdict = CORRECT
+        return res
+    if body is not None:
+        if what == "a":
+            carried.accel[body] = (st.index, student)
+        elif what == "alpha":
+            carried.alpha[body] = (st.index, student)
+    if what in ("v", "a"):
+        for why, v in kinematic_variants(ref, P, what):
+            if same_vector(ref, student, ref.setup.vector(v)):
+                res.feedback.append(why)
+                break
+    if same_vector(ref, student, -engine):
+        res.feedback.append("sign: the whole vector has the wrong sign")
+    for e, ename in _basis_of(ref, student):
+        a, b = ref.scalar(student.dot(e)), ref.scalar(engine.dot(e))
+        va, vb = ref.sampler.evaluate([space.to_plain(a), space.to_plain(b)]).T
+        if not space.vanishes((va - vb)[:, None], np.abs(np.stack([va, vb], 1))):
+            sa, sb = kin.simplify_expr(a), kin.simplify_expr(b)
+            res.feedback.append(f"component along {ename}: you wrote {text(sa)}, it is {text(sb)}")
+            res.differences.append((text(sa), text(sb)))
+    if not res.feedback:
+        res.feedback.append(f"{label} differs from the engine's")
+    return res
+
+
+def _vec_text(ref: Reference, v: Vector, like: Vector) -> str:
+    parts = []
+    for e, name in _basis_of(ref, like):
+        c = ref.kin.simplify_expr(ref.scalar(v.dot(e)))
+        if c != 0:
+            parts.append(f"({text(c)}) {name}")
+    return " + ".join(parts) or "0"
+
+
+def _unreadable(msg: str):
+    from .steps import _Unreadable
+
+    return _Unreadable(f"unreadable: {msg}")
+
+
+# free-body diagrams -----------------------------------------------------------------------------------
+_AT = re.compile(r"\s+at\s+|@")
+
+
+def _items(st: Step) -> list[str]:
+    raw = [st.claim] if isinstance(st.claim, str) else list(st.claim)
+    out = []
+    for r in raw:
+        out += [s.strip() for s in r.split(";") if s.strip()]
+    return out
+
+
+def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
+    from ..io.expressions import parse_vector
+    from ..laws.newton_euler import body_loads
+
+    bodies = ref.system.bodies
+    if st.body is None and len(bodies) > 1:
+        raise InputError("a free-body diagram names its body (body = \"NAME\") when the problem has several.",
+                         where=st.where, hint=f"Bodies: {', '.join(bodies)}.")
+    body = bodies.get(st.body) if st.body else next(iter(bodies.values()))
+    if body is None:
+        raise InputError(f"the problem has no body named '{st.body}'.", where=st.where,
+                         hint=f"Bodies: {', '.join(bodies)}.")
+    kin = ref.kin
+    student = []
+    for item in _items(st):
+        parts = _AT.split(item)
+        if len(parts) > 2:
+            raise _unreadable(f"'{item[:60]}' names more than one point")
+        vec = read("load", parse_vector, parts[0], ref.scope, st.where)
+        loc, pname = None, None
+        if len(parts) == 2:
+            pname = parts[1].strip()
+            P = ref.point_of(pname)
+            if P is None:
+                raise _unreadable(f"'{pname[:40]}' is not a point of the problem (points: {', '.join(ref.system.points)})")
+            loc = kin.position(P)
+        student.append((ref.setup.vector(vec), loc, item))
+    _, _, apps = body_loads(ref.setup, body)
+    engine = [(ref.setup.vector(a.vector), None if a.is_torque else
+               (a.location if a.location is not None else kin.position(a.point)), a.label) for a in apps]
+    res = StepResult(st.index, st.kind, INCORRECT)
+    res.expected = "; ".join(f"{a[2]}: {_vec_text(ref, a[0], a[0])}" + ("" if a[1] is None else
+                                                                       f" at {_where(ref, a[1])}") for a in engine)
+    left_s, left_e = list(range(len(student))), list(range(len(engine)))
+    fb = []
+
+    def on_line(s, e):
+        if (s[1] is None) != (e[1] is None):
+            return False
+        return s[1] is None or same_vector(ref, (s[1] - e[1]).cross(e[0]), Vector(0))
+
+    for sign, how in ((1, None), (-1, "sign")):
+        for i in list(left_s):
+            s = student[i]
+            for j in left_e:
+                e = engine[j]
+                if same_vector(ref, s[0], sign * e[0]):
+                    if not on_line(s, e):
+                        fb.append(f"wrong point: {e[2]} acts at {_where(ref, e[1])}, not where you put it "
+                                  f"({s[2]})" if e[1] is not None else f"{e[2]} is a couple, not a force")
+                    elif how:
+                        fb.append(f"sign: {e[2]} points the other way ({s[2]})")
+                    left_s.remove(i)
+                    left_e.remove(j)
+                    break
+    # one arrow for two loads at the same point (a contact force as N + F)
+    for i in list(left_s):
+        s = student[i]
+        for j, k in [(j, k) for j in left_e for k in left_e if j < k]:
+            if same_vector(ref, s[0], engine[j][0] + engine[k][0]) and on_line(s, engine[j]) and on_line(s, engine[k]):
+                left_s.remove(i)
+                left_e.remove(j)
+                left_e.remove(k)
+                break
+    for j in left_e:
+        e = engine[j]
+        fb.append(f"missing from the diagram: {e[2]} ({_vec_text(ref, e[0], e[0])}"
+                  + ("" if e[1] is None else f" at {_where(ref, e[1])}") + ")")
+        res.differences.append(("", e[2]))
+    for i in left_s:
+        fb.append(f"extra in the diagram: {student[i][2]} (no such load acts on {body.name})")
+        res.differences.append((student[i][2], ""))
+    res.feedback = fb
+    if not fb:
+        res.verdict = CORRECT
+    else:
+        carried.loads[body] = (st.index, [(s[0], s[1]) for s in student])
+    return res
+
+
+def _where(ref: Reference, loc: Vector) -> str:
+    for p in ref.system.points.values():
+        if same_vector(ref, ref.kin.position(p), loc):
+            return p.name
+    return text(ref.kin.simplify_vector(loc)) if hasattr(ref.kin, "simplify_vector") else str(loc)
+
+
+# answers ----------------------------------------------------------------------------------------------
+def _values_of(answer) -> list:
+    """Every scalar an answer states (its value, the rates of an end state, frequencies ...)."""
+    v = answer.value
+    out = []
+    if isinstance(v, dict):
+        out += list(v.values())
+    elif isinstance(v, list | tuple):
+        for x in v:
+            out += _values_of(type("A", (), {"value": x, "details": {}})())
+    elif isinstance(v, sp.Basic):
+        out.append(v)
+    else:
+        for attr in ("configuration", "natural_frequencies"):
+            x = getattr(v, attr, None)
+            if isinstance(x, dict):
+                out += list(x.values())
+            elif isinstance(x, list | tuple):
+                out += list(x)
+    for x in (getattr(answer, "details", {}) or {}).get("end_state", {}).values():
+        out.append(x)
+    return [sp.sympify(x) for x in out if isinstance(x, sp.Basic | int | float)]
+
+
+def grade_answer(ref: Reference, st: Step) -> StepResult:
+    from ..analysis.answers import numeric_values_from
+    from ..io.expressions import parse_scalar
+
+    res = StepResult(st.index, st.kind, INCORRECT)
+    a = ref.answers().get(st.question)
+    if isinstance(a, Exception) or a is None:
+        res.feedback = [f"the engine could not answer '{st.question}' itself ({a}), so the answer is not graded"]
+        return res
+    res.expected = a.text
+    try:
+        claim = parse_scalar(st.claim, ref.scope, st.where)
+    except InputError:
+        from ..commands.common import value
+
+        claim = sp.Float(read("value", value, st.claim, st.where))
+    params = numeric_values_from(ref.system)
+    rtol = st.tolerance or ANSWER_RTOL
+    candidates = _values_of(a)
+    symbolic = bool(claim.free_symbols - {t})
+    for c in candidates:
+        if symbolic:
+            d = space.to_plain(claim - c)
+            vals = ref.sampler.evaluate([d, space.to_plain(c)])
+            if space.vanishes(vals[:, :1], np.abs(vals)):
+                res.verdict = CORRECT
+                return res
+        else:
+            cv = _num(c, params)
+            if cv is not None and math.isclose(float(claim), cv, rel_tol=rtol, abs_tol=rtol * 1e-3):
+                res.verdict = CORRECT
+                return res
+    shown = ", ".join(f"{text(c)}" + ("" if _num(c, params) is None else f" ≈ {_num(c, params):.6g}")
+                      for c in candidates[:3])
+    cv = _num(candidates[0], params) if candidates else None
+    cl = _num(claim, params)
+    if cv is not None and cl is not None:
+        if math.isclose(cl, -cv, rel_tol=rtol):
+            res.feedback.append("sign: the value has the wrong sign")
+        elif math.isclose(cl, math.degrees(cv), rel_tol=rtol):
+            res.feedback.append("unit: this is the angle in degrees; write it with its unit (e.g. '48.19 deg') "
+                                "or in radians")
+    res.feedback.append(f"the answer is {shown}" if shown else "the answer differs from the engine's")
+    res.differences.append((text(claim), shown))
+    return res
+
+
+def _num(expr, params) -> float | None:
+    try:
+        v = complex(sp.sympify(expr).xreplace(params).evalf())
+    except (TypeError, ValueError):
+        return None
+    if abs(v.imag) > 1e-9 * max(1.0, abs(v.real)) or not math.isfinite(v.real):
+        return None
+    return v.real

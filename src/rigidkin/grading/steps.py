@@ -1,0 +1,372 @@
+"""Grading a worksheet step by step against the engine's own derivation.
+
+Each step gets a verdict — ``correct``, ``incorrect`` or ``unreadable`` (the parser could not read the
+claim; its message says why) — and feedback naming the cause.  Equations (``balance``, ``eom``) are
+accepted in any equivalent form: any nonzero factor, any arrangement, any valid combination of the
+balance equations (:mod:`rigidkin.grading.space`).  A wrong step is matched against the common mistakes
+(:mod:`rigidkin.grading.mistakes`), then compared term by term (:mod:`rigidkin.grading.feedback`), and a
+later step is also graded against the student's own earlier steps: an equation that follows from them
+is a *carried error*, named with the steps it comes from.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from ..errors import InputError, RigidkinError
+from ..printing import text
+from . import space
+from .engine import Reference, reference
+from .feedback import dimension_problem, term_diff
+from .mistakes import force_candidates, moment_candidates
+from .worksheet import Step, Worksheet, load_worksheet
+
+t = dynamicsymbols._t
+CORRECT, INCORRECT, UNREADABLE = "correct", "incorrect", "unreadable"
+
+
+@dataclass
+class StepResult:
+    index: int
+    kind: str
+    verdict: str
+    feedback: list[str] = field(default_factory=list)
+    claim: str = ""                     # the student's claim as written
+    expected: str = ""                  # the engine's form of the step, for the report
+    carried_from: tuple[int, ...] = ()  # earlier steps this (wrong) step follows from
+    differences: list[tuple[str, str]] = field(default_factory=list)   # (student's, engine's) per difference
+
+
+@dataclass
+class GradeReport:
+    problem: str
+    title: str
+    student: str
+    steps: list[StepResult]
+
+    @property
+    def correct(self) -> int:
+        return sum(1 for s in self.steps if s.verdict == CORRECT)
+
+    @property
+    def score(self) -> float:
+        return round(self.correct / len(self.steps), 4) if self.steps else 0.0
+
+    @property
+    def ok(self) -> bool:
+        return all(s.verdict == CORRECT for s in self.steps)
+
+
+@dataclass
+class Carried:
+    """What the student's earlier wrong steps said, for grading later steps against them."""
+
+    accel: dict = field(default_factory=dict)      # body → (step, vector a_G)
+    alpha: dict = field(default_factory=dict)      # body → (step, vector α)
+    loads: dict = field(default_factory=dict)      # body → (step, [(vector, location | None)])
+    balances: list = field(default_factory=list)   # (step, expr = 0)
+
+
+def grade_file(path) -> GradeReport:
+    return grade(load_worksheet(path))
+
+
+def grade(ws: Worksheet) -> GradeReport:
+    """Grade every step of a worksheet (the problem derived once, cached for the run)."""
+    ref = reference(ws.problem_ref, ws.mode)
+    for st in ws.steps:
+        if st.kind == "answer" and st.question not in {q.name for q in ref.spec_questions()}:
+            known = ", ".join(q.name for q in ref.spec_questions()) or "none"
+            raise InputError(f"the problem asks no question named '{st.question}'.", where=st.where,
+                             hint=f"Questions of {ws.problem}: {known}.")
+    carried = Carried()
+    results = []
+    from .kinds import grade_answer, grade_fbd, grade_kinematics
+
+    for st in ws.steps:
+        claim = st.claim if isinstance(st.claim, str) else "; ".join(st.claim)
+        try:
+            if st.kind == "kinematics":
+                res = grade_kinematics(ref, st, carried)
+            elif st.kind == "fbd":
+                res = grade_fbd(ref, st, carried)
+            elif st.kind == "answer":
+                res = grade_answer(ref, st)
+            else:
+                res = grade_equation(ref, st, carried)
+        except _Unreadable as exc:
+            res = StepResult(st.index, st.kind, UNREADABLE, [str(exc)])
+        res.claim = claim
+        results.append(res)
+    title = ws.title or getattr(ref.spec, "title", "") or ws.problem
+    return GradeReport(ws.problem, title, ws.student, results)
+
+
+class _Unreadable(Exception):
+    pass
+
+
+def read(kind: str, fn, *args):
+    """Run a parser; its refusal makes the step unreadable (the message says where and why)."""
+    try:
+        return fn(*args)
+    except RigidkinError as exc:
+        raise _Unreadable(f"unreadable {kind}: {exc.message}" + (f" {exc.hint}" if exc.hint else "")) from None
+
+
+# equations: balance and eom ---------------------------------------------------------------------------
+def parse_claim(ref: Reference, st: Step):
+    from ..io.expressions import parse_equation, parse_scalar
+
+    txt = st.claim
+    bare = txt.replace("<=", "").replace(">=", "").replace("==", "")
+    if "=" in bare:
+        eq = read("equation", parse_equation, txt, ref.scope, st.where)
+        return eq.lhs, eq.rhs
+    return read("equation", parse_scalar, txt, ref.scope, st.where), sp.Integer(0)
+
+
+def _candidates(ref: Reference, st: Step, variants: bool = True):
+    """The engine's equations for the law the step names (all laws when it names none)."""
+    bodies = [ref.body(st.body)] if st.body else list(ref.system.bodies.values())
+    if None in bodies:
+        raise InputError(f"the problem has no body named '{st.body}'.", where=st.where,
+                         hint=f"Bodies: {', '.join(ref.system.bodies)}.")
+    direction = None
+    if st.direction:
+        from ..io.expressions import parse_vector
+
+        direction = read("direction", parse_vector, st.direction, ref.scope, st.where)
+    out = []
+    laws = [st.law] if st.law else ["force", "moment", "energy"]
+    if "force" in laws:
+        dirs = [(direction, st.direction)] if direction is not None else \
+            (ref.directions() if st.law else ref.axes())
+        for b in bodies:
+            out += force_candidates(ref, b, dirs, variants)
+    if "moment" in laws:
+        axes = [(direction, st.direction)] if direction is not None else ref.axes(moment=True)
+        for b in bodies:
+            if st.point:
+                P = ref.point_of(st.point)
+                if P is None:
+                    raise InputError(f"the problem has no point named '{st.point}'.", where=st.where,
+                                     hint=f"Points: {', '.join(ref.system.points)}.")
+                pts = [P]
+            else:
+                pts = ref.body_points(b) + [ref.system.origin]
+            out += moment_candidates(ref, b, pts, axes) if variants else \
+                [c for c in moment_candidates(ref, b, pts, axes) if c.mistake is None]
+    if "energy" in laws:
+        from .engine import Candidate
+
+        out += [Candidate("work–energy: dE/dt = ΣP_nc", e, None, "energy") for e in ref.energy_equation()]
+    return out
+
+
+def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
+    lhs, rhs = parse_claim(ref, st)
+    expr = lhs - rhs
+    res = StepResult(st.index, st.kind, INCORRECT)
+    notes = []
+    plain_expr = ref.scalar(expr)
+    if not plain_expr.has(*ref.unknowns):
+        if plain_expr.has(*[q.diff(t) for q in ref.solution.coordinates]) or \
+                plain_expr.has(*ref.solution.coordinates):
+            notes.append("read as a first integral: graded through its time derivative")
+            expr = sp.diff(expr, t)
+        else:
+            res.feedback = ["it contains no acceleration and no unknown reaction, so it cannot be an equation of "
+                            "motion or a balance law of this problem"]
+            return res
+    if st.kind == "eom":
+        reacts = [r for r in ref.setup.reactions if ref.scalar(expr).has(r)]
+        if reacts:
+            res.feedback = [f"an equation of motion is free of the unknown reactions, but this one contains "
+                            f"{', '.join(map(str, reacts))}: eliminate them"]
+            res.expected = _expected_eom(ref)
+            return res
+    dim = dimension_problem(ref, lhs, rhs)
+    regimes = ref.regimes()
+    for reg in regimes:
+        try:
+            row = ref.row(expr, reg)
+        except space.NotLinear:
+            res.feedback = ["it is not linear in the accelerations and reactions, as every balance law is"]
+            return res
+        if space.is_trivial(row):
+            res.feedback = ["it reduces to 0 = 0: it says nothing"]
+            return res
+        if space.in_span(ref.basis(reg), row):
+            res.verdict = CORRECT
+            res.feedback = notes + ([f"a valid combination of the balance equations ({_regime_text(reg, regimes)})"]
+                                    if len(regimes) > 1 else [])
+            res.expected = _expected(ref, st, expr)
+            if st.kind == "balance":
+                carried.balances.append((st.index, None))
+            return res
+    reg = regimes[0]
+    row = ref.row(expr, reg)
+    fb = list(notes)
+    if dim:
+        fb.append(dim)
+    named = _named_mistake(ref, st, row, reg)
+    if named:
+        fb.append(named)
+    via = _carried(ref, row, reg, carried)
+    if via:
+        res.carried_from = via
+        fb.append("carried error: it follows correctly from your step" + ("s " if len(via) > 1 else " ")
+                  + ", ".join(map(str, via)) + ", which " + ("are" if len(via) > 1 else "is") + " wrong")
+    diff, target = _best_diff(ref, st, expr, reg)
+    if diff is not None and not named:
+        fb += diff.describe()
+        res.differences = [(text(u), "") for u in diff.extra] + [("", text(r)) for r in diff.missing] + \
+            [(text(u), text(-u)) for u in diff.signs] + [(text(u), text(r)) for u, r in diff.coefficients]
+    if len(fb) == len(notes):
+        fb.append("it is not a valid combination of the balance equations")
+    res.feedback = fb
+    res.expected = target
+    if st.kind == "balance":
+        carried.balances.append((st.index, expr))
+    return res
+
+
+def _regime_text(reg, regimes) -> str:
+    return f"regime {regimes.index(reg) + 1}: {reg.describe()}"
+
+
+def _named_mistake(ref: Reference, st: Step, row, reg) -> str | None:
+    basis = ref.basis(reg)
+    cands = _all_mistakes(ref, st)
+    for c in cands:
+        if c.mistake is None:
+            continue
+        try:
+            v = ref.row(c.expr, reg)
+        except space.NotLinear:
+            continue
+        if space.in_span(basis, v):
+            continue                    # the "mistake" is harmless here (e.g. P fixed)
+        for j in range(len(basis)):
+            trial = basis[:j] + basis[j + 1:] + [v]
+            if space.in_span(trial, row):
+                return c.mistake
+    return None
+
+
+def _all_mistakes(ref: Reference, st: Step):
+    if st.kind == "balance":
+        return _candidates(ref, st)
+    # an equation of motion: every mistake of every law that leads to it
+    key = "eom-mistakes"
+    if key not in ref._rows:
+        ref._rows[key] = _candidates(ref, Step(0, "balance", "", st.where, law="moment")) + \
+            _candidates(ref, Step(0, "balance", "", st.where, law="force"))
+    return ref._rows[key]
+
+
+def _carried(ref: Reference, row, reg, carried: Carried) -> tuple[int, ...]:
+    """Earlier wrong steps this equation follows from (empty when none explains it)."""
+    wrong = [(i, e) for i, e in carried.balances if e is not None]
+    base = ref.basis(reg)
+    mods = _modified_equations(ref, carried)
+    tries = []
+    if mods is not None:
+        tries.append((mods[1], [ref.row(e, reg) for e in mods[0]]))
+    for k in range(1, min(len(wrong), 2) + 1):
+        for combo in itertools.combinations(wrong, k):
+            rows = [ref.row(e, reg) for _, e in combo]
+            for start, steps in ([(base, ())] + ([(tries[0][1], tries[0][0])] if tries else [])):
+                for drop in itertools.combinations(range(len(start)), k):
+                    trial = [r for j, r in enumerate(start) if j not in drop] + rows
+                    tries.append((tuple(sorted(set(steps) | {i for i, _ in combo})), trial))
+    for steps, trial in tries:
+        try:
+            if space.in_span(trial, row):
+                return tuple(sorted(steps))
+        except space.NotLinear:
+            continue
+    return ()
+
+
+def _modified_equations(ref: Reference, carried: Carried):
+    """Newton–Euler for every body with the student's wrong a_G, α or diagram in place of the engine's."""
+    if not (carried.accel or carried.alpha or carried.loads):
+        return None
+    kin = ref.kin
+    exprs, steps = [], set()
+    for b in ref.system.bodies.values():
+        a = carried.accel.get(b)
+        al = carried.alpha.get(b)
+        ld = carried.loads.get(b)
+        for x in (a, al, ld):
+            if x is not None:
+                steps.add(x[0])
+        aG = a[1] if a else kin.acceleration(b.centre)
+        alpha = al[1] if al else kin.alpha(b.frame)
+        if ld:
+            F = sum((v for v, loc in ld[1] if loc is not None), sp.S.Zero)
+            from sympy.physics.vector import Vector
+
+            F = F if isinstance(F, Vector) else Vector(0)
+            M = ref.moment_vector(b, kin.position(b.centre), ld[1])
+        else:
+            bal = ref.balance(b)
+            F, M = bal.force, bal.moment
+        w = kin.omega_of(b)
+        dH = b.inertia.dot(alpha) + w.cross(b.inertia.dot(w))
+        for e, _ in ref.axes():
+            exprs.append(ref.scalar(ref.setup.vector(F - b.mass * aG).dot(e)))
+        for e, _ in ref.axes(moment=True):
+            exprs.append(ref.scalar(ref.setup.vector(M - dH).dot(e)))
+    exprs = [e for e in exprs if e != 0]
+    return exprs, tuple(sorted(steps))
+
+
+def _best_diff(ref: Reference, st: Step, expr, reg):
+    """The engine's equation nearest to the student's, and the term-by-term differences."""
+    student = sp.expand(ref.scalar(expr, reg))
+    if st.kind == "eom":
+        cands = [sp.expand(ref.scalar(e, reg)) for e in _eom_forms(ref, reg, student)]
+    else:
+        cands = [sp.expand(ref.scalar(c.expr, reg)) for c in _candidates(ref, st, variants=False)]
+    best, best_e = None, None
+    for c in cands:
+        if c == 0:
+            continue
+        d = term_diff(student, c)
+        if d is not None and (best is None or d.score > best.score):
+            best, best_e = d, c
+    target = "" if best_e is None else f"{text(sp.expand(best.scale * best_e))} = 0"
+    return best, target
+
+
+def _eom_forms(ref: Reference, reg, student):
+    out = list(reg.eom)
+    accels = [q.diff(t, 2) for q in ref.solution.coordinates]
+    if len(accels) > 1:
+        M, f = reg.mass_matrix, reg.forcing
+        c = sp.Matrix([student.coeff(a) for a in accels])
+        try:
+            lam = M.T.LUsolve(c)
+            out.append(sum((lam[i] * (sum((M[i, j] * accels[j] for j in range(len(accels))), sp.S.Zero) - f[i])
+                            for i in range(len(accels))), sp.S.Zero))
+        except (ValueError, ZeroDivisionError):
+            pass
+    return out
+
+
+def _expected(ref: Reference, st: Step, expr) -> str:
+    if st.kind == "eom":
+        return _expected_eom(ref)
+    return _best_diff(ref, st, expr, ref.regimes()[0])[1]
+
+
+def _expected_eom(ref: Reference) -> str:
+    reg = ref.regimes()[0]
+    return "; ".join(f"{text(e)} = 0" for e in reg.eom)
