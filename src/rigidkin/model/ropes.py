@@ -126,7 +126,8 @@ class Rope(Constraint):
 
 
 def _root(kin, square) -> sp.Expr:
-    """√square, with |x| resolved by the sign of x in the reference configuration (as Kinematics.magnitude)."""
+    """√square (a segment's length), with |x| resolved by the sign of x in the reference configuration, as
+    Kinematics.magnitude does; where x is zero there (no initial values), x itself (a length as written)."""
     root = sp.sqrt(sp.factor(sp.trigsimp(sp.expand(square))))
     if root.has(sp.Abs):
         ref = kin.reference_values()
@@ -135,9 +136,11 @@ def _root(kin, square) -> sp.Expr:
             try:
                 val = float(a.args[0].subs(ref))
             except (TypeError, ValueError):
-                continue
-            if val:
-                repl[a] = a.args[0] if val > 0 else -a.args[0]
+                val = 0.0
+            repl[a] = -a.args[0] if val < 0 else a.args[0]
+            note = f"|{a.args[0]}| = {repl[a]} (the length of a rope segment, positive)"
+            if note not in kin.assumptions:
+                kin.assumptions.append(note)
         root = root.xreplace(repl)
     return root
 
