@@ -3,7 +3,11 @@
 ``sympy.parse_expr`` reads each string back (coordinates print as ``theta(t)``, rates as
 ``Derivative(theta(t), t)``).  The top-level ``eom``, ``accelerations`` and ``reactions`` are those of
 the first regime; ``regimes`` lists every regime (one for most problems; one per sign of the slip
-speed where sliding friction acts) with the conditions that define it.
+speed where sliding friction acts) with the conditions that define it.  ``answers`` holds each
+answer's exact value (a string, null when unanswered), ``answer_text`` its sentence (or the reason it
+was not answered), ``answer_data`` the same as data: exact value and its number at the parameters'
+values, tolerance, and for events whether and when they happen and every coordinate and rate there.
+The file ``results.schema.json`` next to this module is the JSON Schema of the whole object.
 """
 
 from __future__ import annotations
@@ -59,6 +63,71 @@ def answer_value(answer) -> str:
     return answer.text
 
 
+def _numeric(expr, values: dict):
+    """The number an expression takes at the parameters' values (None where it is not one)."""
+    try:
+        e = sp.sympify(expr)
+        v = complex(e.xreplace({k: sp.Float(x) for k, x in values.items()}).evalf())
+    except (TypeError, ValueError, AttributeError, sp.SympifyError):
+        return None
+    if v != v or abs(v.imag) > 1e-9 * max(1.0, abs(v.real)) or abs(v.real) == float("inf"):
+        return None
+    return float(v.real)
+
+
+def _key(k) -> str:
+    """q(t) → "q", q̇ → "dot(q)", a reaction symbol → its name."""
+    if isinstance(k, sp.Derivative):
+        return f"dot({_key(k.expr)})" if k.derivative_count == 1 else f"ddot({_key(k.expr)})"
+    if isinstance(k, sp.Function):
+        return k.func.__name__
+    return str(k)
+
+
+def _quantity(expr, values) -> dict:
+    return {"exact": _s(expr), "numeric": _numeric(expr, values)}
+
+
+def _state(state: dict, values) -> dict:
+    return {_key(k): _quantity(v, values) for k, v in state.items()}
+
+
+def answer_data(a, values: dict) -> dict:
+    """One answer as data: exact value, its number, tolerance, and what the kind adds (events: whether
+    and when they happen and the state of every coordinate; equilibria: M, C, K, frequencies)."""
+    d = a.details or {}
+    out: dict[str, Any] = {"answered": True, "kind": a.question.kind, "text": a.text, "exact": a.exact,
+                           "tolerance": a.tolerance, "note": a.note or None}
+    v = a.value
+    if isinstance(v, sp.Basic) and not isinstance(v, sp.Eq):
+        out["value"] = _quantity(v, values)
+    elif isinstance(v, sp.Eq):
+        out["value"] = {"exact": _s(v), "numeric": None}
+    elif isinstance(v, dict) and v:
+        out["value"] = {"exact": answer_value(a), "numeric": None}
+        out["state"] = _state(v, values)
+    elif isinstance(v, tuple | list) and v and all(isinstance(x, sp.Basic) for x in v):
+        out["value"] = {"exact": _s(list(v)), "numeric": None}
+    else:
+        out["value"] = None
+    if "happens" in d:
+        out["happens"] = bool(d["happens"])
+    if d.get("time") is not None:
+        out["time"] = float(d["time"])
+    if a.question.kind in ("event", "extreme", "impulse", "interval", "phases") and d.get("end_state"):
+        out["state"] = _state(d["end_state"], values)
+    if d.get("equilibria"):
+        out["equilibria"] = [{
+            "configuration": _state(e.configuration, values),
+            "M": [[_s(x) for x in e.M.row(i)] for i in range(e.M.rows)],
+            "C": [[_s(x) for x in e.C.row(i)] for i in range(e.C.rows)],
+            "K": [[_s(x) for x in e.K.row(i)] for i in range(e.K.rows)],
+            "natural_frequencies": [_quantity(w, values) for w in e.natural_frequencies],
+            "damping_ratios": [_quantity(z, values) for z in e.damping_ratios],
+            "stability": e.stability} for e in d["equilibria"]]
+    return out
+
+
 def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] | None = None) -> dict[str, Any]:
     """The JSON object ``rigidkin solve --format json`` prints."""
     s = sol.system
@@ -91,11 +160,15 @@ def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] 
         "notes": list(notes or []),
         "warnings": list(sol.warnings),
     }
+    data["answer_data"] = {}
+    values = {p.symbol: p.value for p in s.parameter_info.values() if p.value is not None}
     for name, a in (answers or {}).items():
         if isinstance(a, str):            # not answered: the reason
             data["answers"][name] = None
             data["answer_text"][name] = a
+            data["answer_data"][name] = {"answered": False, "reason": a}
         else:
             data["answers"][name] = answer_value(a)
             data["answer_text"][name] = a.text
+            data["answer_data"][name] = answer_data(a, values)
     return data
