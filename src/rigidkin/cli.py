@@ -13,7 +13,7 @@ import sys
 
 from .errors import RigidkinError
 
-COMMANDS = ("solve", "list", "validate", "check", "simulate", "sweep", "report")
+COMMANDS = ("solve", "list", "validate", "check", "simulate", "sweep", "report", "grade", "variants")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -37,9 +37,10 @@ ANSWER_RTOL = 5e-3
 
 
 def _vector_values(ref: Reference, v: Vector, regime=None) -> np.ndarray:
-    comps = [space.to_plain(ref.scalar(v.dot(e), regime)) for e, _ in ref.axes()] if v != Vector(0) else []
+    F = ref.F
+    comps = [space.to_plain(ref.scalar(v.dot(e), regime)) for e in (F.x, F.y, F.z)] if v != Vector(0) else []
     if not comps:
-        return np.zeros((ref.sampler.n, len(ref.axes())))
+        return np.zeros((ref.sampler.n, 3))
     return ref.sampler.evaluate(comps)
 
 

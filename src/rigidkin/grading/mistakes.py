@@ -10,9 +10,11 @@ cause in words; the grader names the one a wrong step matches.
 
 from __future__ import annotations
 
-from sympy.physics.vector import Vector
+from sympy.physics.vector import Vector, dynamicsymbols
 
 from .engine import Candidate, Reference
+
+t = dynamicsymbols._t
 
 
 def kinematic_variants(ref: Reference, point, quantity: str) -> list[tuple[str, Vector]]:
@@ -20,6 +22,13 @@ def kinematic_variants(ref: Reference, point, quantity: str) -> list[tuple[str, 
     kin, F = ref.kin, ref.F
     body = ref.point_body(point)
     out = []
+    if quantity == "a":
+        v = ref.setup.vector(kin.velocity(point))
+        rates_only = Vector(0)
+        for q in ref.solution.coordinates:
+            rates_only += v.diff(q.diff(t), F.ref) * q.diff(t, 2)
+        out.append(("terms missing: only the rates were differentiated (the q̈ terms); the terms in the squares "
+                    "of the rates, from the turning of the directions (ω × (ω × r), ω × v), are missing", rates_only))
     for fr in ref.system.frames.values():
         if fr.ref is F.ref:
             continue

@@ -207,7 +207,7 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
                                     if len(regimes) > 1 else [])
             res.expected = _expected(ref, st, expr)
             if st.kind == "balance":
-                carried.balances.append((st.index, None))
+                carried.balances.append((st.index, None, None))
             return res
     reg = regimes[0]
     row = ref.row(expr, reg)
@@ -222,7 +222,7 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
         res.carried_from = via
         fb.append("carried error: it follows correctly from your step" + ("s " if len(via) > 1 else " ")
                   + ", ".join(map(str, via)) + ", which " + ("are" if len(via) > 1 else "is") + " wrong")
-    diff, target = _best_diff(ref, st, expr, reg)
+    diff, target, nearest = _best_diff(ref, st, expr, reg)
     if diff is not None and not named:
         fb += diff.describe()
         res.differences = [(text(u), "") for u in diff.extra] + [("", text(r)) for r in diff.missing] + \
@@ -232,7 +232,7 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
     res.feedback = fb
     res.expected = target
     if st.kind == "balance":
-        carried.balances.append((st.index, expr))
+        carried.balances.append((st.index, expr, nearest))
     return res
 
 
@@ -271,50 +271,82 @@ def _all_mistakes(ref: Reference, st: Step):
 
 
 def _carried(ref: Reference, row, reg, carried: Carried) -> tuple[int, ...]:
-    """Earlier wrong steps this equation follows from (empty when none explains it)."""
-    wrong = [(i, e) for i, e in carried.balances if e is not None]
+    """The fewest earlier wrong steps this equation follows from (empty when none explains it)."""
+    wrong = [(i, e, c) for i, e, c in carried.balances if e is not None]
+    mods = [(i, "accel", b, v) for b, (i, v) in carried.accel.items()] + \
+        [(i, "alpha", b, v) for b, (i, v) in carried.alpha.items()] + \
+        [(i, "loads", b, v) for b, (i, v) in carried.loads.items()]
     base = ref.basis(reg)
-    mods = _modified_equations(ref, carried)
-    tries = []
-    if mods is not None:
-        tries.append((mods[1], [ref.row(e, reg) for e in mods[0]]))
-    for k in range(1, min(len(wrong), 2) + 1):
-        for combo in itertools.combinations(wrong, k):
-            rows = [ref.row(e, reg) for _, e in combo]
-            for start, steps in ([(base, ())] + ([(tries[0][1], tries[0][0])] if tries else [])):
-                for drop in itertools.combinations(range(len(start)), k):
-                    trial = [r for j, r in enumerate(start) if j not in drop] + rows
-                    tries.append((tuple(sorted(set(steps) | {i for i, _ in combo})), trial))
-    for steps, trial in tries:
-        try:
-            if space.in_span(trial, row):
-                return tuple(sorted(steps))
-        except space.NotLinear:
-            continue
+    n_full = base[0].shape[1] if base else 0
+    for size in range(1, 4):
+        for nm in range(0, min(size, len(mods)) + 1):
+            nb = size - nm
+            if nb > len(wrong):
+                continue
+            for mset in itertools.combinations(mods, nm):
+                start = base if not mset else [ref.row(e, reg) for e in _modified_equations(ref, mset)]
+                for bset in itertools.combinations(wrong, nb):
+                    rows = [ref.row(e, reg) for _, e, _ in bset]
+                    allowed = [_replaceable(ref, start, c, reg) for _, _, c in bset]
+                    for drop in itertools.product(*allowed):
+                        if len(set(drop)) < len(drop):
+                            continue
+                        trial = [r for j, r in enumerate(start) if j not in drop] + rows
+                        if _spans_all(trial, n_full):
+                            continue
+                        try:
+                            if space.in_span(trial, row):
+                                return tuple(sorted({m[0] for m in mset} | {i for i, _, _ in bset}))
+                        except space.NotLinear:
+                            continue
     return ()
 
 
-def _modified_equations(ref: Reference, carried: Carried):
-    """Newton–Euler for every body with the student's wrong a_G, α or diagram in place of the engine's."""
-    if not (carried.accel or carried.alpha or carried.loads):
-        return None
-    kin = ref.kin
-    exprs, steps = [], set()
-    for b in ref.system.bodies.values():
-        a = carried.accel.get(b)
-        al = carried.alpha.get(b)
-        ld = carried.loads.get(b)
-        for x in (a, al, ld):
-            if x is not None:
-                steps.add(x[0])
-        aG = a[1] if a else kin.acceleration(b.centre)
-        alpha = al[1] if al else kin.alpha(b.frame)
-        if ld:
-            F = sum((v for v, loc in ld[1] if loc is not None), sp.S.Zero)
-            from sympy.physics.vector import Vector
+def _replaceable(ref: Reference, rows, counterpart, reg) -> list[int]:
+    """The rows the correct form of a wrong equation could stand in for (the student wrote it in their place)."""
+    if counterpart is None:
+        return list(range(len(rows)))
+    try:
+        c = ref.row(counterpart, reg)
+    except space.NotLinear:
+        return list(range(len(rows)))
+    out = []
+    for j in range(len(rows)):
+        rest = rows[:j] + rows[j + 1:] + [c]
+        if space.in_span(rest, rows[j]):
+            out.append(j)
+    return out
 
-            F = F if isinstance(F, Vector) else Vector(0)
-            M = ref.moment_vector(b, kin.position(b.centre), ld[1])
+
+def _spans_all(rows, n: int) -> bool:
+    """The rows span every equation (an inconsistent set: anything would follow from it)."""
+    import numpy as np
+
+    if len(rows) < n:
+        return False
+    M = np.stack(rows, axis=1)
+    for i in range(M.shape[0]):
+        if np.all(np.isfinite(M[i])):
+            return np.linalg.matrix_rank(M[i], tol=1e-9 * max(1.0, np.abs(M[i]).max())) >= n
+    return False
+
+
+def _modified_equations(ref: Reference, mods) -> list:
+    """Newton–Euler for every body with the student's wrong a_G, α or diagram in place of the engine's."""
+    from sympy.physics.vector import Vector
+
+    kin = ref.kin
+    exprs = []
+    for b in ref.system.bodies.values():
+        own = {kind: v for _, kind, body, v in mods if body is b}
+        aG = own.get("accel", kin.acceleration(b.centre))
+        alpha = own.get("alpha", kin.alpha(b.frame))
+        if "loads" in own:
+            F = Vector(0)
+            for v, loc in own["loads"]:
+                if loc is not None:
+                    F += v
+            M = ref.moment_vector(b, kin.position(b.centre), own["loads"])
         else:
             bal = ref.balance(b)
             F, M = bal.force, bal.moment
@@ -324,8 +356,7 @@ def _modified_equations(ref: Reference, carried: Carried):
             exprs.append(ref.scalar(ref.setup.vector(F - b.mass * aG).dot(e)))
         for e, _ in ref.axes(moment=True):
             exprs.append(ref.scalar(ref.setup.vector(M - dH).dot(e)))
-    exprs = [e for e in exprs if e != 0]
-    return exprs, tuple(sorted(steps))
+    return [e for e in exprs if e != 0]
 
 
 def _best_diff(ref: Reference, st: Step, expr, reg):
@@ -343,7 +374,7 @@ def _best_diff(ref: Reference, st: Step, expr, reg):
         if d is not None and (best is None or d.score > best.score):
             best, best_e = d, c
     target = "" if best_e is None else f"{text(sp.expand(best.scale * best_e))} = 0"
-    return best, target
+    return best, target, best_e
 
 
 def _eom_forms(ref: Reference, reg, student):
