@@ -231,6 +231,6 @@ def test_cli_report_answers_the_files_questions(tmp_path):
 
 
 def test_cli_report_stops_at_its_time_limit(tmp_path, capsys):
-    assert main(["report", "collar-rod", "-o", str(tmp_path / "x.html"), "--timeout", "0.001"]) == 2
+    assert main(["report", "collar-rod", "-o", str(tmp_path / "x.html"), "--timeout", "0.001"]) == 4
     err = capsys.readouterr().err
     assert "took longer than 0.001 s" in err and "Traceback" not in err

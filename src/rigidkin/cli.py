@@ -1,23 +1,33 @@
 """The ``rigidkin`` command line.
 
 Each subcommand lives in its own module ``rigidkin.commands.<name>`` with a ``register(subparsers)``
-function; this module only assembles them.  Errors are printed as one paragraph and exit with
-status 2; ``--debug`` shows the traceback.
+function; this module only assembles them.  Every stop has an exit status that says what happened
+(:mod:`rigidkin.commands.options`): 0 success, 1 a question unanswered or laws that disagree, 2 bad
+input (one paragraph, never a traceback; ``--debug`` shows it), 3 a simulation stopped early because
+the model cannot go on, 4 the time limit, 130 interrupted.  Everything printed to the terminal that
+came from a file or the command line has its control characters escaped.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import sys
 
+from .commands.deadline import TimeLimitReached, deadline
+from .commands.options import EXIT_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_TIME, Parser
 from .errors import RigidkinError
+from .textsafe import terminal_safe
 
 COMMANDS = ("solve", "list", "validate", "check", "simulate", "sweep", "report", "grade", "variants")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="rigidkin", description="Rigid-body kinetics derived step by step.")
+    p = Parser(prog="rigidkin", description="Rigid-body kinetics derived step by step.",
+               epilog="Exit status: 0 success, 1 a question unanswered (solve) or laws that disagree (check), "
+                      "2 bad input or an output that cannot be written, 3 a simulation stopped early (the model "
+                      "cannot go on), 4 the time limit (--timeout) reached, 130 interrupted.")
     p.add_argument("--debug", action="store_true", help="show Python tracebacks")
     sub = p.add_subparsers(dest="command", required=True)
     for name in COMMANDS:
@@ -31,21 +41,49 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def say(text: str) -> None:
+    """One paragraph on stderr, prefixed ``rigidkin:``, control characters escaped."""
+    print(f"rigidkin: {terminal_safe(text)}", file=sys.stderr)
+
+
 def main(argv: list[str] | None = None) -> int:
+    """Run a command; ``argv`` None reads the program's arguments and arms the hard stop of ``--timeout``."""
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        return int(args.func(args) or 0)
+        with deadline(getattr(args, "timeout", None), hard_stop=argv is None):
+            return int(args.func(args) or EXIT_OK)
     except RigidkinError as exc:
         if args.debug:
             raise
-        print(f"rigidkin: {exc}", file=sys.stderr)
-        return 2
+        say(str(exc))
+        return EXIT_INPUT
+    except TimeLimitReached as exc:
+        _flush()
+        say(str(exc))
+        return EXIT_TIME
     except BrokenPipeError:
-        return 0
+        return EXIT_OK
     except KeyboardInterrupt:
-        print("rigidkin: interrupted", file=sys.stderr)
-        return 130
+        say("interrupted")
+        return EXIT_INTERRUPTED
+    except (MemoryError, RecursionError) as exc:
+        if args.debug:
+            raise
+        say(f"the problem is too large to handle ({type(exc).__name__}). Simplify the model or its expressions, "
+            "or ask for fewer samples or runs.")
+        return EXIT_INPUT
+    except Exception as exc:
+        if args.debug:
+            raise
+        say(f"internal error: {type(exc).__name__}: {exc} This is a bug in rigidkin: run again with --debug for "
+            "the traceback and report it with the problem file.")
+        return EXIT_INPUT
+
+
+def _flush() -> None:
+    with contextlib.suppress(OSError, ValueError):
+        sys.stdout.flush()
 
 
 if __name__ == "__main__":

@@ -13,6 +13,8 @@ import json
 
 
 def register(sub) -> None:
+    from .options import add_timeout
+
     p = sub.add_parser("check", help="cross-check the equations of motion by every law, and their dimensions")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
     p.add_argument("--expect", action="append", default=[], metavar="EQUATION",
@@ -25,8 +27,7 @@ def register(sub) -> None:
                    help="the state of a contact: open, slip or stick (repeatable)")
     p.add_argument("--no-dimensions", action="store_true", help="skip the dimensional analysis")
     p.add_argument("--format", default="text", choices=("text", "json"), help="output format")
-    p.add_argument("--timeout", type=float, default=600, metavar="SECONDS",
-                   help="stop a derivation that takes longer (default 600; 0: no limit)")
+    add_timeout(p)
     p.set_defaults(func=run)
 
 
@@ -57,9 +58,11 @@ def parse_expectation(text: str, system):
 
 def run(args) -> int:
     from ..printing import text
-    from .common import guarded, load_system, progress, time_limit, with_file
+    from ..textsafe import terminal_safe
+    from .common import guarded, json_safe, load_system, progress, with_file
 
-    system, spec = load_system(args.problem)
+    with progress(f"Reading {args.problem}"):
+        system, spec = guarded(args, load_system, args.problem)
     expected = [(e, parse_expectation(e, system)) for e in args.expect]
     laws = None if args.laws is None else [w.strip() for w in args.laws.split(",") if w.strip()]
     if laws is not None:
@@ -71,17 +74,20 @@ def run(args) -> int:
     from ..laws.crosscheck import cross_check, expectation
 
     try:
-        with progress("Deriving by every law"), time_limit(args.timeout, "the cross-check"):
+        with progress("Deriving by every law"):
             sol = guarded(args, system.solve, method=args.method, mode=_mode(args.mode))
             report = guarded(args, cross_check, sol, laws=laws, dimensions=not args.no_dimensions)
             exps = tuple(guarded(args, expectation, sol, eq, label=src) for src, eq in expected)
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
     report = dataclasses.replace(report, expectations=exps)
-    if args.format == "json":
-        print(json.dumps(_json(report, text), indent=2))
-    else:
-        print(report)
+    try:
+        with progress("Writing the comparison"):
+            out = json_safe(json.dumps(_json(report, text), indent=2)) if args.format == "json" else \
+                terminal_safe(guarded(args, str, report))
+    except RigidkinError as exc:
+        raise with_file(exc, spec) from None
+    print(out)
     return 0 if report.ok else 1
 
 

@@ -40,6 +40,9 @@ def progress(message: str, delay: float = 1.0):
     """Show a rich status line on a terminal's stderr when the step takes longer than ``delay`` seconds."""
     from rich.console import Console
 
+    from .deadline import set_step
+
+    set_step(message)
     console = Console(stderr=True)
     if not console.is_terminal:
         yield
@@ -67,7 +70,8 @@ def progress(message: str, delay: float = 1.0):
 
 
 class TimeLimit(RigidkinError):
-    """A step ran past the time limit the user gave (``--timeout``)."""
+    """A step ran past a time limit of its own (the whole command's ``--timeout`` is
+    :class:`rigidkin.commands.deadline.TimeLimitReached`)."""
 
 
 def time_limit(seconds: float | None, what: str):
@@ -79,6 +83,17 @@ def time_limit(seconds: float | None, what: str):
                          hint="Simplify the model, or allow more time with --timeout SECONDS (0: no limit).")
 
     return limit(seconds, error)
+
+
+def json_safe(text: str) -> str:
+    """JSON text for a terminal: control characters inside its strings written as ``\\uXXXX`` escapes."""
+    import json
+
+    from ..textsafe import terminal_safe
+
+    if terminal_safe(text) == text:
+        return text
+    return "".join(ch if terminal_safe(ch) == ch else json.dumps(ch)[1:-1] for ch in text)
 
 
 def guarded(args, fn, *a, **kw):
@@ -98,6 +113,22 @@ def guarded(args, fn, *a, **kw):
         raise RigidkinError(f"internal error: {type(exc).__name__}: {exc}",
                             hint="This is a bug in rigidkin: run again with --debug for the traceback and report "
                                  "it with the problem file.") from None
+
+
+def value(text: str, where: str) -> float:
+    """A number typed on the command line: SI, or with a unit (``"30 deg"``), finite.
+
+    Every command reads its values here, through rigidkin's one quantity parser.
+    """
+    import math
+
+    from ..numeric.state import quantity
+
+    v = quantity(text, None, where)
+    if not math.isfinite(v):
+        raise RigidkinError(f"'{text}' is not a finite number.", where=where,
+                            hint="Give a finite value, e.g. 0.5 or '30 deg'.")
+    return v
 
 
 def with_file(exc: RigidkinError, spec) -> RigidkinError:

@@ -11,6 +11,7 @@ def register(sub) -> None:
 def run(args) -> int:
     from .. import examples
     from ..errors import RigidkinError
+    from ..textsafe import terminal_safe
     from .common import load_system
 
     for name in examples.names():
@@ -20,5 +21,5 @@ def run(args) -> int:
             title = system.title
         except RigidkinError as exc:
             title = f"(cannot be loaded: {exc})"
-        print(f"{name:22s} {form:5s} {title}")
+        print(terminal_safe(f"{name:22s} {form:5s} {title}", newlines=False))
     return 0

@@ -8,16 +8,19 @@ inline figures, an inline animation player); Markdown and LaTeX put their figure
 from __future__ import annotations
 
 from ..errors import InputError
+from ..textsafe import terminal_safe
 
 
 def register(sub) -> None:
+    from .options import add_timeout, end_time
+
     p = sub.add_parser("report", help="write the step-by-step derivation as HTML, Markdown or LaTeX",
                        description="Write the derivation of a problem (frames, kinematics, free-body diagrams, "
                                    "balance laws, solving, answers, checks) as a document; with --simulate, add "
                                    "time histories, a phase portrait and an animation of the motion.")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name")
     p.add_argument("-o", "--output", required=True, help="output file: .html, .md or .tex")
-    p.add_argument("--simulate", type=float, metavar="T", help="simulate from t = 0 to T seconds and show it")
+    p.add_argument("--simulate", type=end_time, metavar="T", help="simulate from t = 0 to T seconds and show it")
     p.add_argument("--method", default="newton-euler", help="the balance law (default newton-euler)")
     p.add_argument("--mode", action="append", default=[], metavar="CONTACT=STATE",
                    help="state of a contact (open, slip, stick) for the derivation")
@@ -32,9 +35,7 @@ def register(sub) -> None:
     p.add_argument("--no-animation", action="store_true", help="leave out the animation")
     p.add_argument("--no-checks", action="store_true", help="do not run the cross-check by other laws")
     p.add_argument("--no-answers", action="store_true", help="do not answer the problem file's questions")
-    p.add_argument("--timeout", type=float, default=600, metavar="SECONDS",
-                   help="stop a step (derivation, an answer, the cross-check, the simulation) that takes longer "
-                        "(default 600; 0: no limit)")
+    add_timeout(p)
     p.set_defaults(func=run)
 
 
@@ -57,12 +58,16 @@ def _numbers(pairs: dict, what: str) -> dict:
 
 def run(args) -> int:
     from ..errors import RigidkinError
+    from ..outfile import OutputError, check_target, writing
     from ..report.document import Animation, build_document
     from ..report.output import format_of, write_document
-    from .common import guarded, load_system, progress, time_limit, with_file
+    from .common import guarded, load_system, progress, with_file
     from .solve import answer_questions
 
     fmt = format_of(args.output)
+    check_target(args.output, "the report")
+    if args.gif:
+        check_target(args.gif, "the animation", (".gif",))
     if args.gif and args.simulate is None:
         raise InputError("--gif needs a simulation to animate.", where="report --gif",
                          hint="Add --simulate T (seconds).")
@@ -78,36 +83,35 @@ def run(args) -> int:
     with progress(f"Reading {args.problem}"):
         system, spec = guarded(args, load_system, args.problem)
     try:
-        with progress(f"Deriving the equations of motion ({args.method})"), time_limit(args.timeout, "the derivation"):
+        with progress(f"Deriving the equations of motion ({args.method})"):
             solution = guarded(args, system.solve, method=args.method, mode=mode)
         answers, _ = answer_questions(system, spec, args)
         result = None
         if args.simulate is not None:
             from ..numeric.simulate import simulate
 
-            with progress(f"Simulating to t = {args.simulate:g} s"), time_limit(args.timeout, "the simulation"):
+            with progress(f"Simulating to t = {args.simulate:g} s"):
                 result = guarded(args, simulate, system, (0.0, args.simulate), initial_state=initial or None,
                                  params=params or None)
         figures = not args.no_figures
-        with progress("Writing the report (figures, cross-check, animation)"), \
-                time_limit(args.timeout, "the report (figures, cross-check, animation)"):
+        with progress("Writing the report (figures, cross-check, animation)"):
             doc = guarded(args, build_document, solution, simulation=result, answers=answers, figures=figures,
                           animation=figures and not args.no_animation, checks=not args.no_checks,
                           values=at or None, gif=fmt != "html" or bool(args.gif),
                           parameters=_numbers(params, "report --set") or None)
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
-    path = write_document(doc, args.output)
-    print(f"wrote {path}")
+    try:
+        path = write_document(doc, args.output)
+    except OSError as exc:
+        raise OutputError(f"cannot write the report to {args.output}: {exc.strerror or exc}.") from None
+    print(terminal_safe(f"wrote {path}"))
     if args.gif:
         gifs = [b.gif for s in doc.sections for b in s.blocks if isinstance(b, Animation) and b.gif]
         if not gifs:
             raise InputError("there is no animation to write as a GIF.", where="report --gif",
                              hint="Leave out --no-figures and --no-animation.")
-        try:
-            with open(args.gif, "wb") as f:
-                f.write(gifs[0])
-        except OSError as exc:
-            raise InputError(f"cannot write the GIF: {exc.strerror}.", where=args.gif) from None
-        print(f"wrote {args.gif}")
+        with writing(args.gif, "the animation", binary=True) as f:
+            f.write(gifs[0])
+        print(terminal_safe(f"wrote {args.gif}"))
     return 0

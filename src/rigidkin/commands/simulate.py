@@ -9,6 +9,7 @@ and the histories; ``--json`` prints the events, the final state and the energy 
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 import warnings
@@ -17,12 +18,14 @@ from ..errors import InputError
 
 
 def register(sub) -> None:
+    from .options import add_timeout, end_time, points, start_time, tolerance
+
     p = sub.add_parser("simulate", help="simulate the motion, switching contact and friction modes exactly",
                        description="Simulate a problem through its contact modes (contacts opening, impacts, "
                                    "rolling and slipping), with events located exactly.")
     p.add_argument("problem", help="a problem file or a bundled example name")
-    p.add_argument("--t-end", type=float, required=True, metavar="T", help="end time [s]")
-    p.add_argument("--t-start", type=float, default=0.0, metavar="T0", help="start time [s] (default 0)")
+    p.add_argument("--t-end", type=end_time, required=True, metavar="T", help="end time [s]")
+    p.add_argument("--t-start", type=start_time, default=0.0, metavar="T0", help="start time [s] (default 0)")
     p.add_argument("--set", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="parameter values; units allowed: --set \"beta=30 deg\" m=2")
     p.add_argument("--initial", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
@@ -34,10 +37,12 @@ def register(sub) -> None:
     p.add_argument("--plot", metavar="PNG", help="write a figure of the histories")
     p.add_argument("--csv", metavar="CSV", help="write the histories as CSV")
     p.add_argument("--json", action="store_true", help="print events, final state and energy drift as JSON")
-    p.add_argument("--points", type=int, default=1001, help="samples in the histories (default 1001)")
-    p.add_argument("--rtol", type=float, default=1e-11, help="relative tolerance (default 1e-11)")
-    p.add_argument("--atol", type=float, default=1e-13, help="absolute tolerance (default 1e-13)")
+    p.add_argument("--points", type=points, default=1001,
+                   help="samples in the histories (default 1001; refused when they would not fit in memory)")
+    p.add_argument("--rtol", type=tolerance, default=1e-11, help="relative tolerance (default 1e-11)")
+    p.add_argument("--atol", type=tolerance, default=1e-13, help="absolute tolerance (default 1e-13)")
     p.add_argument("--method", default="DOP853", help="solve_ivp method: DOP853 (default) or Radau, BDF, …")
+    add_timeout(p)
     p.set_defaults(func=run)
 
 
@@ -65,9 +70,12 @@ def _restitution(items: list[str]):
 
 def _number(text: str, where: str) -> float:
     try:
-        return float(text)
+        v = float(text)
     except ValueError:
         raise InputError(f"'{text}' is not a number.", where=where) from None
+    if not math.isfinite(v):
+        raise InputError(f"'{text}' is not a finite number.", where=where, hint="Give a number from 0 to 1.")
+    return v
 
 
 class _Progress:
@@ -99,42 +107,81 @@ class _Progress:
             self.bar.stop()
 
 
-def run(args) -> int:
+def _simulate(system, span, **kw):
+    """:func:`rigidkin.numeric.simulate`, an arithmetic overflow anywhere in it reported as the model stopping."""
     from ..numeric import simulate
-    from .common import load_system
+    from ..numeric.rhs import SimulationError
 
-    system, _ = load_system(args.problem)
+    try:
+        return simulate(system, span, **kw)
+    except (OverflowError, ZeroDivisionError, FloatingPointError) as exc:
+        raise SimulationError(f"the arithmetic failed while simulating ({exc}).", where=system.name,
+                              hint="A load or a relation of the model grows beyond floating-point range; check "
+                                   "its expressions and the initial state.") from None
+
+
+def check_points(system, points: int) -> None:
+    """Refuse ``--points`` whose histories would not fit in memory (estimated before anything is sampled)."""
+    from ..limits import check_memory, history_bytes
+
+    n, n_c = len(system.coordinate_info), len(system.constraints)
+    columns = 2 * n + 1 + 4 * n_c + 6          # t, state, work; reactions and friction limits; T, U, E, mode
+    check_memory(history_bytes(points, columns), f"{points:,} samples of {columns} histories", "--points",
+                 hint="Ask for fewer samples (the default 1001 draws a smooth figure; events are exact whatever the "
+                      "sampling).")
+
+
+def run(args) -> int:
+    """Exit status 0, or 3 (EXIT_STOPPED) when the simulation stops before its end time."""
+    from ..numeric.figure import figure_formats
+    from ..numeric.rhs import SimulationError
+    from ..outfile import check_target
+    from ..textsafe import terminal_safe
+    from .common import guarded, json_safe, load_system
+    from .options import EXIT_STOPPED
+
+    if args.csv:
+        check_target(args.csv, "the histories")
+    if args.plot:
+        check_target(args.plot, "the figure", figure_formats())
+    if not args.t_end > args.t_start:
+        raise InputError(f"the end time {args.t_end:g} s is not after the start time {args.t_start:g} s.",
+                         where="--t-end", hint="Give --t-end greater than --t-start.")
     params = _pairs(args.set, "--set")
     initial = _pairs(args.initial, "--initial")
     mode = _pairs(args.mode, "--mode")
-    if args.points < 2:
-        raise InputError("--points must be at least 2.", where="--points")
+    restitution = _restitution(args.restitution)
+    system, _ = guarded(args, load_system, args.problem)
+    check_points(system, args.points)
     progress = _Progress(sys.stderr.isatty() and not args.json)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", RuntimeWarning)
         try:
-            result = simulate(system, (args.t_start, args.t_end), initial_state=initial, params=params, mode=mode,
-                              restitution=_restitution(args.restitution), method=args.method, rtol=args.rtol,
-                              atol=args.atol, n_points=args.points, progress=progress)
+            result = guarded(args, _simulate, system, (args.t_start, args.t_end), initial_state=initial,
+                             params=params, mode=mode, restitution=restitution, method=args.method,
+                             rtol=args.rtol, atol=args.atol, n_points=args.points, progress=progress)
+        except SimulationError as exc:
+            print(f"rigidkin: the model cannot go on: {terminal_safe(exc)}", file=sys.stderr)
+            return EXIT_STOPPED
         finally:
             progress.close()
     del caught
     if args.csv:
-        result.to_csv(args.csv)
+        result.write_csv(args.csv)
     if args.plot:
         result.plot(args.plot)
     if args.json:
-        print(result.to_json())
+        print(json_safe(result.to_json()))
     else:
-        print(result)
+        print(terminal_safe(result))
         print("Final state: " + ", ".join(f"{k} = {v:.10g}" for k, v in result.final_state.items()))
         for path, what in ((args.plot, "figure"), (args.csv, "histories")):
             if path:
-                print(f"Wrote the {what} to {path}")
+                print(terminal_safe(f"Wrote the {what} to {path}"))
     for w in result.warnings:
-        print(f"rigidkin: warning: {w}", file=sys.stderr)
+        print(f"rigidkin: warning: {terminal_safe(w)}", file=sys.stderr)
     if not result.reached_end:       # stopped early: the model cannot go on (reason and state printed above)
-        print(f"rigidkin: the simulation stopped at t = {result.t_final:.10g} before the end time "
-              f"({result.stop_reason}): {result.message}", file=sys.stderr)
-        return 3
+        print(terminal_safe(f"rigidkin: the simulation stopped at t = {result.t_final:.10g} before the end time "
+                            f"({result.stop_reason}): {result.message}"), file=sys.stderr)
+        return EXIT_STOPPED
     return 0

@@ -4,8 +4,12 @@ from __future__ import annotations
 
 import json
 
+from .options import EXIT_UNANSWERED
+
 
 def register(sub) -> None:
+    from .options import add_timeout
+
     p = sub.add_parser("solve", help="derive the equations of motion, reactions and answers")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
     try:
@@ -17,15 +21,14 @@ def register(sub) -> None:
                         "default newton-euler)")
     p.add_argument("--format", default="text", choices=("text", "latex", "json"), help="output format")
     p.add_argument("--no-answers", action="store_true", help="skip the questions in the file's [ask]")
-    p.add_argument("--timeout", type=float, default=600, metavar="SECONDS",
-                   help="stop a derivation that takes longer (default 600; 0: no limit)")
+    add_timeout(p)
     p.set_defaults(func=run)
 
 
 def answer_questions(system, spec, args) -> tuple[dict, list[str]]:
     """Answer the file's questions in order; a question that cannot be answered gets its reason."""
     from ..errors import RigidkinError
-    from .common import guarded, progress, time_limit
+    from .common import guarded, progress
 
     questions = spec.questions if spec is not None else ()
     if not questions or args.no_answers:
@@ -38,7 +41,7 @@ def answer_questions(system, spec, args) -> tuple[dict, list[str]]:
     answers, context = {}, {}
     for q in questions:
         try:
-            with progress(f"Answering {q.name}"), time_limit(args.timeout, f"answering '{q.name}'"):
+            with progress(f"Answering {q.name}"):
                 a = guarded(args, answer, system, q, context)
         except RigidkinError as exc:
             answers[q.name] = str(exc)
@@ -100,24 +103,32 @@ def latex_text(sol, spec, answers) -> str:
 
 
 def run(args) -> int:
+    """Exit status 0, or 1 (EXIT_UNANSWERED) when a question of the file could not be answered."""
     from ..errors import RigidkinError
     from ..io.results import solution_data
     from ..report.text import problem_text
-    from .common import guarded, load_system, progress, time_limit, with_file
+    from ..textsafe import terminal_safe
+    from .common import guarded, json_safe, load_system, progress, with_file
 
     with progress(f"Reading {args.problem}"):
         system, spec = guarded(args, load_system, args.problem)
     try:
-        with progress(f"Deriving the equations of motion ({args.method})"), \
-                time_limit(args.timeout, "the derivation"):
+        with progress(f"Deriving the equations of motion ({args.method})"):
             sol = guarded(args, system.solve, method=args.method)
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
     answers, notes = answer_questions(system, spec, args)
-    if args.format == "json":
-        print(json.dumps(solution_data(sol, spec, answers, notes), indent=2, ensure_ascii=False))
-    elif args.format == "latex":
-        print(latex_text(sol, spec, answers))
-    else:
-        print(problem_text(sol, spec, answers, notes))
-    return 0
+    try:
+        with progress("Writing the solution"):
+            if args.format == "json":
+                text = json_safe(json.dumps(guarded(args, solution_data, sol, spec, answers, notes), indent=2,
+                                            ensure_ascii=False))
+            elif args.format == "latex":
+                text = terminal_safe(guarded(args, latex_text, sol, spec, answers))
+            else:
+                text = terminal_safe(guarded(args, problem_text, sol, spec, answers, notes))
+    except RigidkinError as exc:
+        raise with_file(exc, spec) from None
+    print(text)
+    unanswered = [name for name, a in answers.items() if isinstance(a, str)]
+    return EXIT_UNANSWERED if unanswered else 0

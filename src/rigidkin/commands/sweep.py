@@ -17,6 +17,8 @@ from ..errors import InputError
 
 
 def register(sub) -> None:
+    from .options import add_timeout, chunk, end_time, threads, tolerance, workers
+
     p = sub.add_parser("sweep", help="simulate over a grid of parameters and initial values (compiled, parallel)",
                        description="Simulate one problem over a grid of parameter values and initial states, in "
                                    "compiled code, and write one table row per run.")
@@ -27,7 +29,7 @@ def register(sub) -> None:
                    help="fixed parameter values; units allowed: --set \"beta=30 deg\"")
     p.add_argument("--initial", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="fixed initial coordinates and rates: --initial theta=0.2 \"dot(theta)=0\"")
-    p.add_argument("--t-end", type=float, default=10.0, metavar="T", help="end time of every run [s] (default 10)")
+    p.add_argument("--t-end", type=end_time, default=10.0, metavar="T", help="end time of every run [s] (default 10)")
     p.add_argument("--stop-at", nargs="+", action="extend", default=[], metavar="EVENT",
                    help="events that end a run: a reaction reaching zero (N_A) or NAME=VALUE "
                         "(default: any unilateral contact stops pushing)")
@@ -37,15 +39,16 @@ def register(sub) -> None:
                    help="the mode to integrate: open, slip or stick per contact (default: all closed)")
     p.add_argument("-o", "--output", required=True, metavar="CSV", help="the table of runs")
     p.add_argument("--plot", metavar="PNG", help="a figure of the first event's time against the first axis")
-    p.add_argument("--rtol", type=float, default=1e-10, help="relative tolerance (default 1e-10)")
-    p.add_argument("--atol", type=float, default=1e-12, help="absolute tolerance (default 1e-12)")
-    p.add_argument("--threads", type=int, default=None, metavar="N", help="local threads (default: all cores)")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
+    p.add_argument("--rtol", type=tolerance, default=1e-10, help="relative tolerance (default 1e-10)")
+    p.add_argument("--atol", type=tolerance, default=1e-12, help="absolute tolerance (default 1e-12)")
+    p.add_argument("--threads", type=threads, default=None, metavar="N", help="local threads (default: all cores)")
+    p.add_argument("--workers", type=workers, default=None, metavar="N",
                    help="run on a local Dask cluster of N worker processes")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on the Dask cluster at ADDRESS (tcp://host:8786)")
-    p.add_argument("--chunk", type=int, default=None, metavar="RUNS", help="runs per task (default: automatic)")
+    p.add_argument("--chunk", type=chunk, default=None, metavar="RUNS", help="runs per task (default: automatic)")
     p.add_argument("--backend", choices=("auto", "c", "numpy"), default="auto",
                    help="generated code: C (compiled here) or numpy (default: C when a compiler is present)")
+    add_timeout(p)
     p.set_defaults(func=run)
 
 
@@ -57,7 +60,7 @@ def _pairs(items, what) -> dict:
 
 def parse_axis(text: str, where: str):
     """``START:STOP:COUNT`` → (start, stop, count); ``V1,V2,…`` → a list; values may carry units."""
-    from ..numeric.state import quantity
+    from .common import value as quantity
 
     text = text.strip()
     if ":" in text:
@@ -70,22 +73,26 @@ def parse_axis(text: str, where: str):
             raise InputError(f"the count '{parts[2]}' is not a whole number.", where=where) from None
         if count < 1 or count > 10_000_000:
             raise InputError(f"the count {count} must be between 1 and 10^7.", where=where)
-        return quantity(parts[0], None, where), quantity(parts[1], None, where), count
-    values = [quantity(v, None, where) for v in text.split(",") if v.strip()]
+        return quantity(parts[0], where), quantity(parts[1], where), count
+    values = [quantity(v, where) for v in text.split(",") if v.strip()]
     if not values:
         raise InputError(f"'{text}' gives no values.", where=where)
     return values
 
 
 def run(args) -> int:
-    from ..numeric.sweep import sweep
-    from .common import load_system
+    from ..numeric.figure import figure_formats
+    from ..numeric.sweep import check_size, sweep
+    from ..outfile import check_target
+    from ..textsafe import terminal_safe
+    from .common import guarded, load_system
 
-    system, _ = load_system(args.problem)
+    check_target(args.output, "the sweep table")
+    if args.plot:
+        check_target(args.plot, "the figure", figure_formats())
     vary = {name: parse_axis(v, f"--param {name}") for name, v in _pairs(args.param, "--param").items()}
-    for flag, value in (("--threads", args.threads), ("--workers", args.workers), ("--chunk", args.chunk)):
-        if value is not None and value < 1:
-            raise InputError(f"{flag} must be at least 1.", where=flag)
+    system, _ = guarded(args, load_system, args.problem)
+    check_size(system, vary, events=len(args.stop_at) + len(args.record) + 2 * len(system.constraints) + 2)
     scheduler = args.scheduler or ("local" if args.workers else None)
     progress = _Progress(sys.stderr.isatty())
     start = time.perf_counter()
@@ -99,24 +106,31 @@ def run(args) -> int:
         progress.close()
     elapsed = time.perf_counter() - start
     res.to_csv(args.output)
+    say = _safe_print(terminal_safe)
     counts = {}
     from ..numeric.batch import STATUS
 
     for s in res.status:
         counts[STATUS[int(s)]] = counts.get(STATUS[int(s)], 0) + 1
-    print(f"{len(res)} runs of {system.name} ({res.backend}) in {elapsed:.3g} s: "
+    say(f"{len(res)} runs of {system.name} ({res.backend}) in {elapsed:.3g} s: "
           + ", ".join(f"{v} {k}" for k, v in counts.items()))
     for k, name in enumerate(res.result.event_names):
         hit = int((~_isnan(res.result.event_t[:, k])).sum())
-        print(f"  event {name}: {hit} of {len(res)} runs")
-    print(f"Wrote the table to {args.output}")
+        say(f"  event {name}: {hit} of {len(res)} runs")
+    say(f"Wrote the table to {args.output}")
     if args.plot:
         res.plot(args.plot)
-        print(f"Wrote the figure to {args.plot}")
+        say(f"Wrote the figure to {args.plot}")
     bad = [k for k, v in counts.items() if k not in ("reached the end time", "terminal event")]
     if bad:
-        print(f"rigidkin: warning: some runs ended early ({', '.join(bad)}); see the status column.", file=sys.stderr)
+        say(f"rigidkin: warning: some runs ended early ({', '.join(bad)}); see the status column.", file=sys.stderr)
     return 0
+
+
+def _safe_print(safe):
+    import builtins
+
+    return lambda *a, **kw: builtins.print(*(safe(x) for x in a), **kw)
 
 
 def _isnan(a):

@@ -5,8 +5,11 @@ from __future__ import annotations
 
 
 def register(sub) -> None:
+    from .options import add_timeout
+
     p = sub.add_parser("validate", help="check a problem file without solving it")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name")
+    add_timeout(p, 120)
     p.set_defaults(func=run)
 
 
@@ -27,8 +30,10 @@ def run(args) -> int:
     source = str(spec.path) if spec is not None else f"bundled example {args.problem}"
     indep = ", ".join(q.func.__name__ for q in red.independent) or "none"
     dep = ", ".join(q.func.__name__ for q in red.dependent)
-    print(f"{source}: valid. {system.title}: {len(system.bodies)} bodies, {len(system.coordinate_info)} "
+    from ..textsafe import terminal_safe
+
+    print(terminal_safe(f"{source}: valid. {system.title}: {len(system.bodies)} bodies, {len(system.coordinate_info)} "
           f"coordinates (independent: {indep}{'; dependent: ' + dep if dep else ''}), "
           f"{len(system.constraints)} constraints, {len(system.loads)} loads"
-          + (f", {len(spec.questions)} questions." if spec is not None else "."))
+          + (f", {len(spec.questions)} questions." if spec is not None else ".")))
     return 0

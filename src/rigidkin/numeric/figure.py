@@ -6,6 +6,10 @@ and listed under the plots.  matplotlib's Agg backend draws it, so no display is
 
 from __future__ import annotations
 
+import io
+import re
+from pathlib import Path
+
 import numpy as np
 
 _UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s"), "other": ("", "1/s")}
@@ -117,5 +121,67 @@ def plot_result(result, path=None, title: str | None = None):
                 f"largest constraint residual {result.max_residual:.2g}; {result.status}: {result.message}")
     fig.text(0.01, 0.0, "\n".join(foot), fontsize=8, va="top", ha="left", family="monospace", wrap=True)
     if path is not None:
-        fig.savefig(path, dpi=110, bbox_inches="tight")
+        save_figure(fig, path, dpi=110, bbox_inches="tight")
     return fig
+
+
+def figure_formats() -> tuple[str, ...]:
+    """The extensions a figure can be written with (``.png``, ``.pdf``, ``.svg``, ...; not ``.pgf``, which needs
+    LaTeX)."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    return tuple(sorted(f".{k}" for k in FigureCanvasBase.get_supported_filetypes() if k != "pgf"))
+
+
+def save_figure(fig, path, what: str = "the figure", **savefig_kw) -> Path:
+    """Draw ``fig`` and write it to ``path`` whole or not at all; the format follows the extension.
+
+    Text that matplotlib's mathtext cannot typeset (a title with unmatched ``$`` or ``\\frac{``) is
+    drawn as plain text instead.  A path that cannot be written is an OutputError naming the reason.
+    """
+    from ..outfile import OutputError, check_target, writing
+
+    formats = figure_formats()
+    p = check_target(path, what, formats)
+    _plain_text(fig, only_unparsable=True)
+    buf = io.BytesIO()
+    try:
+        try:
+            fig.savefig(buf, format=p.suffix[1:].lower(), **savefig_kw)
+        except ValueError:                   # text that mathtext cannot parse after all: show every text as written
+            _plain_text(fig)
+            buf = io.BytesIO()
+            fig.savefig(buf, format=p.suffix[1:].lower(), **savefig_kw)
+    except (ValueError, RuntimeError, OverflowError) as exc:
+        reason = " ".join(str(exc).split())[:300]
+        raise OutputError(f"cannot draw {what} for {p}: {reason}.",
+                          hint="Try another format (.png, .svg, .pdf) or simpler titles and names.") from None
+    with writing(p, what, binary=True, suffixes=formats) as f:
+        f.write(buf.getvalue())
+    return p
+
+
+_DOLLAR = re.compile(r"(?<!\\)\$")
+
+
+def _plain_text(fig, only_unparsable: bool = False) -> None:
+    """The texts of ``fig`` (every one, or ``only_unparsable`` those mathtext cannot typeset) as plain text:
+    each unescaped ``$`` escaped, so mathtext is never entered."""
+    from matplotlib.cbook import is_math_text
+    from matplotlib.mathtext import MathTextParser
+    from matplotlib.text import Text
+
+    parser = MathTextParser("path") if only_unparsable else None
+    for text in fig.findobj(Text):
+        raw = text.get_text()
+        if "$" not in raw:
+            continue
+        if parser is not None:
+            if not is_math_text(raw):
+                continue
+            try:
+                parser.parse(raw)
+                continue
+            except (ValueError, RuntimeError):
+                pass
+        text.set_text(_DOLLAR.sub(r"\\$", raw))

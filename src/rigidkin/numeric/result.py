@@ -14,6 +14,7 @@ import csv
 import io
 import json
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -170,20 +171,48 @@ class SimulationResult:
         return cols
 
     def to_csv(self, path=None) -> str:
-        """The histories as CSV (t, mode, coordinates, rates, reactions, T, U, E, W); written to ``path`` if given."""
-        cols = self.columns()
+        """The histories as CSV (t, mode, coordinates, rates, reactions, T, U, E, W); written to ``path`` if given.
+
+        Text cells (the mode) are made safe for spreadsheets (no formulas).  For long histories
+        :meth:`write_csv` streams the rows to the file instead of building the text first.
+        """
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        names = list(cols)
-        w.writerow([names[0], "mode", *names[1:]])
-        for j in range(len(self.t)):
-            w.writerow([repr(float(cols["t"][j])), self.segments[int(self.segment[j])].description,
-                        *(repr(float(cols[k][j])) for k in names[1:])])
+        for chunk in self._csv_chunks():
+            buf.write(chunk)
         text = buf.getvalue()
         if path is not None:
-            with open(path, "w", encoding="utf-8", newline="") as f:
-                f.write(text)
+            from ..outfile import write_text
+
+            write_text(path, text, "the histories")
         return text
+
+    def write_csv(self, path) -> Path:
+        """Write the histories as CSV to ``path``, chunk by chunk, whole or not at all (an OutputError says why)."""
+        from ..outfile import writing
+
+        with writing(path, "the histories") as f:
+            for chunk in self._csv_chunks():
+                f.write(chunk)
+        return Path(path)
+
+    def _csv_chunks(self, rows: int = 20_000):
+        from ..textsafe import safe_csv_cell
+
+        cols = self.columns()
+        names = list(cols)
+        modes = [safe_csv_cell(s.description) for s in self.segments]
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow([safe_csv_cell(n) for n in (names[0], "mode", *names[1:])])
+        for start in range(0, len(self.t), rows):
+            for j in range(start, min(start + rows, len(self.t))):
+                w.writerow([repr(float(cols["t"][j])), modes[int(self.segment[j])],
+                            *(repr(float(cols[k][j])) for k in names[1:])])
+            yield buf.getvalue()
+            buf.seek(0)
+            buf.truncate()
+        if buf.tell():
+            yield buf.getvalue()
 
     def plot(self, path=None, title: str | None = None):
         """A figure of coordinates, rates, reactions and energy with the events marked; saved to ``path``."""

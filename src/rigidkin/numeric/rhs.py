@@ -181,7 +181,10 @@ class RHS:
     def __call__(self, t_: float, y: np.ndarray) -> np.ndarray:
         self.calls += 1
         with np.errstate(all="ignore"):
-            dy = np.asarray(self.rates(t_, y, self.params), dtype=float)
+            try:
+                dy = np.asarray(self.rates(t_, y, self.params), dtype=float)
+            except (OverflowError, ZeroDivisionError):     # a load such as θ⁻¹⁰⁰ out of range: reported below
+                dy = np.full(np.shape(y), np.nan)
         if not np.all(np.isfinite(dy)):
             state = ", ".join(f"{k} = {v:.6g}" for k, v in self.layout.as_dict(y).items())
             raise SimulationError(f"the equations of motion give a non-finite rate at t = {t_:.10g} "

@@ -13,6 +13,8 @@ local sweep, run for run, because every run is integrated by the same generated 
 from __future__ import annotations
 
 import csv
+import io
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -90,23 +92,31 @@ class SweepResult:
         cols["status"] = np.array([batch.STATUS[int(s)] for s in self.result.status], dtype=object)
         return cols
 
-    def to_csv(self, path) -> Path:
-        path = Path(path)
+    def to_csv(self, path, rows: int = 20_000) -> Path:
+        """Write the table to ``path`` in chunks of ``rows`` rows, whole or not at all (OutputError: why not)."""
+        from ..outfile import writing
+        from ..textsafe import safe_csv_cell
+
         cols = self.columns()
         names = list(cols)
-        with path.open("w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(names)
-            for r in range(len(self)):
-                w.writerow([_fmt(cols[n][r]) for n in names])
-        return path
+        with writing(path, "the sweep table") as fh:
+            buf = io.StringIO()
+            w = csv.writer(buf, lineterminator="\r\n")
+            w.writerow([safe_csv_cell(n) for n in names])
+            for start in range(0, len(self), rows):
+                block = range(start, min(start + rows, len(self)))
+                w.writerows([safe_csv_cell(_fmt(cols[n][r])) for n in names] for r in block)
+                fh.write(buf.getvalue())
+                buf.seek(0)
+                buf.truncate()
+            fh.write(buf.getvalue())
+        return Path(path)
 
     def plot(self, path, x: str | None = None, y: str | None = None) -> Path:
         """A figure of one table column against another (default: the first event's time against the first input)."""
-        import matplotlib
+        from matplotlib.figure import Figure
 
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        from .figure import save_figure
 
         cols = self.columns()
         x = x or (next(iter(self.inputs)) if self.inputs else "run")
@@ -115,7 +125,8 @@ class SweepResult:
         for c in (x, y):
             if c not in cols:
                 raise InputError(f"'{c}' is not a column of the sweep table.", hint=f"Columns: {', '.join(cols)}.")
-        fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
+        fig = Figure(figsize=(7, 4.5), layout="constrained")
+        ax = fig.subplots()
         xs, ys = np.asarray(cols[x], dtype=float), np.asarray(cols[y], dtype=float)
         order = np.argsort(xs, kind="stable")
         ax.plot(xs[order], ys[order], ".", ms=3 if len(xs) > 200 else 6)
@@ -123,9 +134,7 @@ class SweepResult:
         ax.set_ylabel(y)
         ax.set_title(f"{self.system_name}: {len(self)} runs")
         ax.grid(alpha=0.3)
-        fig.savefig(path, dpi=120)
-        plt.close(fig)
-        return Path(path)
+        return save_figure(fig, path, dpi=120)
 
 
 def _fmt(v) -> str:
@@ -172,15 +181,45 @@ def _mode_events(system, mode) -> list[str]:
     return [str(r) for r, _ in setup_mode(system, mode).unilateral]
 
 
+def axis_length(spec) -> int:
+    """How many values an axis spec gives, without making them."""
+    if isinstance(spec, tuple) and len(spec) == 3:
+        try:
+            return max(int(spec[2]), 0)
+        except (TypeError, ValueError, OverflowError):
+            raise InputError(f"the count of a sweep axis must be a whole number ≥ 1, not {spec[2]!r}.") from None
+    return int(np.size(spec))
+
+
+def check_size(system, vary: Mapping | None, grid: bool = True, events: int = 4) -> int:
+    """The number of runs of a sweep, refused (InputError) when its table would not fit in memory.
+
+    Every run keeps its parameters, inputs, initial and final states, and each event's time and
+    state (``events``: how many events, estimated); see :data:`rigidkin.limits.MEMORY_LIMIT`.
+    """
+    from ..limits import check_memory, sweep_bytes
+
+    lengths = [axis_length(spec) for spec in (vary or {}).values()]
+    runs = (math.prod(lengths) if grid else max(lengths)) if lengths else 1
+    n, n_p = len(system.coordinate_info), len(system.parameter_info)
+    per_run = 3 * n_p + 2 * len(lengths) + 6 * 2 * n + 2 * events * (2 * n + 1) + 8
+    check_memory(sweep_bytes(runs, per_run), f"a sweep of {runs:,} runs", "sweep",
+                 hint="Use fewer values per axis (or fewer axes), or split the sweep into several and join the "
+                      "tables.")
+    return runs
+
+
 def plan(system, vary: Mapping | None = None, params: Mapping | None = None, initial: Mapping | None = None,
-         mode: Mapping | None = None, grid: bool = True) -> tuple[dict, np.ndarray, np.ndarray]:
+         mode: Mapping | None = None, grid: bool = True, events: int = 4) -> tuple[dict, np.ndarray, np.ndarray]:
     """The runs: (inputs per run, parameters runs × n_p, initial states runs × 2n).
 
     ``vary`` maps parameter names or initial values (``theta``, ``dot(theta)``) to axis specs; with
-    ``grid`` every combination is a run, otherwise the axes are zipped (equal lengths).
+    ``grid`` every combination is a run, otherwise the axes are zipped (equal lengths).  The size is
+    checked (:func:`check_size`) before anything is allocated.
     """
     from ..mode import setup_mode
 
+    check_size(system, vary, grid, events)
     layout = StateLayout.of(system)
     base_p = parameter_vector(system, layout, params)
     n = layout.n
@@ -306,8 +345,14 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
         raise InputError(f"the end time must be a number, not {t_end!r}.", where="sweep") from None
     if not np.isfinite(t_end) or t_end <= 0:
         raise InputError(f"the end time must be a positive finite number, not {t_end}.", where="sweep")
+    for name, tol in (("rtol", rtol), ("atol", atol)):
+        if not isinstance(tol, (int, float)) or not math.isfinite(tol) or not 0 < tol < 1:
+            raise InputError(f"the tolerance {name} = {tol!r} must be a positive number below 1.", where="sweep",
+                             hint="For example rtol=1e-10, atol=1e-12.")
     layout = StateLayout.of(system)
-    inputs, P, Y = plan(system, vary, params, initial, mode, grid)
+    stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or [])
+    inputs, P, Y = plan(system, vary, params, initial, mode, grid,
+                        events=len(stops) + len(record) + 2 * len(system.constraints) + 2)
     if regime is not None or form == "implicit":
         which = np.full(len(Y), regime or 0)
     else:
