@@ -1,0 +1,59 @@
+"""``rigidkin variants PROBLEM --count N --seed S [--vary NAME=LOW:HIGH ...]``: a problem set.
+
+Each variant has new parameter values (three significant figures, reproducible from the seed) and an
+answer key (numbers with tolerances) from solving the variant itself, checked against the problem's
+exact answer where there is one.  ``-o set.xml`` writes Moodle XML (numerical questions);
+``--format json`` prints the key as data.
+"""
+
+from __future__ import annotations
+
+import json
+
+
+def register(sub) -> None:
+    from .options import add_timeout
+
+    p = sub.add_parser("variants", help="make a problem set: variants with changed values and checked answer keys")
+    p.add_argument("problem", help="a problem file (.toml) or a bundled example name")
+    p.add_argument("--count", type=int, default=5, help="how many variants (default 5, at most 200)")
+    p.add_argument("--seed", type=int, default=1, help="the seed of the values drawn (default 1)")
+    p.add_argument("--vary", action="append", default=[], metavar="NAME=LOW:HIGH",
+                   help="the range of a parameter, in its declared unit or with a unit (repeatable; default: every "
+                        "parameter with a value except accelerations such as g, within ±20%%)")
+    p.add_argument("--tolerance", type=float, default=0.01, help="relative tolerance of the keys (default 0.01)")
+    p.add_argument("--format", default="text", choices=("text", "json", "moodle"), help="what to print")
+    p.add_argument("-o", "--output", default=None, metavar="FILE.xml", help="write the Moodle XML to FILE.xml")
+    add_timeout(p)
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    import math
+
+    from ..errors import InputError
+    from ..grading.variants import as_data, as_moodle, as_text, make_set, parse_vary
+    from ..textsafe import terminal_safe
+    from .common import guarded, json_safe, progress
+
+    if not (math.isfinite(args.tolerance) and 0 < args.tolerance < 1):
+        raise InputError("--tolerance is a relative tolerance between 0 and 1.", where="--tolerance")
+    if args.output:
+        from ..outfile import check_target
+
+        check_target(args.output, "the Moodle XML", (".xml",))
+    vary = parse_vary(args.vary)
+    with progress(f"Solving {args.count} variants of {args.problem}"):
+        ps = guarded(args, make_set, args.problem, args.count, args.seed, vary, args.tolerance)
+    if args.output:
+        from ..outfile import writing
+
+        with writing(args.output, "the Moodle XML", suffixes=(".xml",)) as fh:
+            fh.write(as_moodle(ps))
+    if args.format == "json":
+        print(json_safe(json.dumps(as_data(ps), indent=2, ensure_ascii=False)))
+    elif args.format == "moodle":
+        print(as_moodle(ps), end="")
+    else:
+        print(terminal_safe(as_text(ps)))
+    return 0

@@ -1,0 +1,269 @@
+"""Problem sets: variants of a problem with changed parameter values, their answer keys, Moodle XML.
+
+Each variant is the problem file with new values (drawn from ``--vary NAME=LOW:HIGH`` ranges, rounded
+to three significant figures, reproducibly from the seed), built and solved afresh: its answers come
+from its own solve.  Where the original problem has an exact answer, the exact answer evaluated at the
+variant's values must agree with the variant's own solve — the key is checked by two routes, and a
+variant whose two routes disagree is refused.  Keys are numbers with a relative tolerance.
+
+The export is Moodle XML (one numerical question per variant and answer); every text that came from
+the problem file is escaped for HTML and then for XML (ElementTree writes the XML escapes).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import random
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import sympy as sp
+
+from ..errors import InputError, RigidkinError
+from ..printing import text
+from ..textsafe import html_text, is_identifier
+from ..units import LENGTH, TIME, to_si
+
+MAX_COUNT = 200
+DEFAULT_RTOL = 0.01
+
+
+@dataclass
+class KeyEntry:
+    question: str
+    label: str           # what the number is (θ, θ̇ just after ...)
+    value: float
+    tolerance: float     # absolute, for the platform
+    exact: str = ""      # the closed form, where there is one
+
+
+@dataclass
+class Variant:
+    index: int
+    values: dict                       # parameter name → value in its declared unit
+    units: dict
+    keys: list[KeyEntry] = field(default_factory=list)
+    fixed: dict = field(default_factory=dict)      # the parameters kept, in their declared units
+    notes: list[str] = field(default_factory=list)
+
+
+@dataclass
+class ProblemSet:
+    problem: str
+    title: str
+    statement: str
+    questions: dict                    # name → description
+    variants: list[Variant]
+
+
+def parse_vary(items) -> dict:
+    """``NAME=LOW:HIGH`` (numbers in the parameter's declared unit, or quantities such as ``10 deg``)."""
+    out = {}
+    for it in items:
+        name, sep, rng = it.partition("=")
+        low, sep2, high = rng.partition(":")
+        name = name.strip()
+        if not sep or not sep2 or not is_identifier(name):
+            raise InputError(f"--vary '{it[:60]}' is not NAME=LOW:HIGH.", where="--vary",
+                             hint="For example --vary m=1:5 --vary l=0.5:2.")
+        out[name] = (low.strip(), high.strip())
+    return out
+
+
+def _round3(v: float) -> float:
+    if v == 0 or not math.isfinite(v):
+        return v
+    return round(v, 2 - int(math.floor(math.log10(abs(v)))))
+
+
+def _in_unit(text_value: str, unit: str, where: str) -> float:
+    """A number in the parameter's declared unit, from a number or a quantity."""
+    si = to_si(text_value, None, where) if any(c.isalpha() for c in text_value) else None
+    if si is None:
+        try:
+            v = float(text_value)
+        except ValueError:
+            raise InputError(f"'{text_value[:40]}' is not a number.", where=where) from None
+        if not math.isfinite(v):
+            raise InputError(f"'{text_value[:40]}' is not a finite number.", where=where)
+        return v
+    return si / to_si(1.0, unit or None, where)
+
+
+def make_set(problem: str, count: int, seed: int, vary: dict, rtol: float = DEFAULT_RTOL) -> ProblemSet:
+    """``count`` variants of ``problem`` (a bundled name or a problem file) with checked answer keys."""
+    from .. import examples
+    from ..io.problem import build_problem, read_toml
+
+    if not 1 <= count <= MAX_COUNT:
+        raise InputError(f"--count {count} is out of range (1 to {MAX_COUNT}).", where="--count")
+    path = Path(problem)
+    if not path.suffix == ".toml":
+        if problem not in examples.names() or not (examples.HERE / f"{problem}.toml").exists():
+            raise InputError(f"'{problem}' is neither a problem file nor a bundled example with a problem file.",
+                             hint=f"Bundled examples: {', '.join(examples.names())}.")
+        path = examples.HERE / f"{problem}.toml"
+    text_, data = read_toml(path)
+    base_system, base_spec = build_problem(data, text_, path)
+    if not base_spec.questions:
+        raise InputError("the problem asks no question ([[ask.question]]), so there is nothing to answer.",
+                         where=str(path), hint="Add the questions a student should answer.")
+    params = data.get("parameters", {})
+    ranges = {}
+    for name, (lo, hi) in vary.items():
+        if name not in params or name not in base_system.parameter_info:
+            raise InputError(f"the problem has no parameter named '{name}'.", where="--vary",
+                             hint=f"Parameters: {', '.join(base_system.parameter_info)}.")
+        unit = base_system.parameter_info[name].unit
+        a, b = _in_unit(lo, unit, f"--vary {name}"), _in_unit(hi, unit, f"--vary {name}")
+        if not a < b:
+            raise InputError(f"--vary {name}: LOW must be below HIGH.", where="--vary")
+        if base_system.parameter_info[name].symbol.is_positive and a <= 0:
+            raise InputError(f"--vary {name}: {name} is positive, so LOW must be above 0.", where="--vary")
+        ranges[name] = (a, b)
+    if not vary:          # every parameter with a value, ±20 %, except accelerations (gravity)
+        for name, p in base_system.parameter_info.items():
+            if p.value is not None and p.value != 0 and p.dimension != LENGTH / TIME**2:
+                v = p.value / to_si(1.0, p.unit or None, name)
+                ranges[name] = (0.8 * v, 1.2 * v) if v > 0 else (1.2 * v, 0.8 * v)
+    from ..analysis.answers import answer
+
+    base_answers, context = {}, {}
+    for q in base_spec.questions:
+        try:
+            a = answer(base_system, q, context)
+        except RigidkinError:
+            continue
+        base_answers[q.name] = a
+        context[q.name] = a
+    out = []
+    for k in range(count):
+        rng = random.Random(f"{seed}:{k}")
+        values = {n: _round3(rng.uniform(a, b)) for n, (a, b) in sorted(ranges.items())}
+        vdata = copy.deepcopy(data)
+        for n, v in values.items():
+            entry = vdata["parameters"][n]
+            if isinstance(entry, dict):
+                entry["value"] = v
+            else:
+                vdata["parameters"][n] = {"value": v}
+        system, spec = build_problem(vdata, text_, path)
+        info = base_system.parameter_info
+        var = Variant(k + 1, values, {n: p.unit for n, p in info.items()})
+        var.fixed = {n: p.value / to_si(1.0, p.unit or None, n) for n, p in info.items()
+                     if n not in values and p.value is not None}
+        _keys(var, system, spec, base_answers, rtol)
+        out.append(var)
+    return ProblemSet(str(problem), base_spec.title, base_spec.statement,
+                      {q.name: q.fields.get("description") or q.name for q in base_spec.questions}, out)
+
+
+def _labelled(a) -> list[tuple[str, sp.Expr]]:
+    v = a.value
+    if isinstance(v, dict):
+        return [(text(k), sp.sympify(x)) for k, x in v.items()]
+    if isinstance(v, sp.Basic):
+        if isinstance(v, sp.Eq):
+            return [(text(v.lhs), v.rhs)]
+        return [(a.question.name, v)]
+    cfg = getattr(v, "configuration", None)
+    out = [(text(k), sp.sympify(x)) for k, x in (cfg or {}).items()]
+    out += [(f"natural frequency {i + 1}", sp.sympify(x)) for i, x in enumerate(getattr(v, "natural_frequencies", ())
+                                                                                  or ())]
+    return out
+
+
+def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
+    from ..analysis.answers import answer, numeric_values_from
+
+    values = numeric_values_from(system)
+    context = {}
+    for q in spec.questions:
+        try:
+            a = answer(system, q, context)
+        except RigidkinError as exc:
+            var.notes.append(f"{q.name}: not answered ({exc.message})")
+            continue
+        context[q.name] = a
+        base = dict(_labelled(base_answers[q.name])) if q.name in base_answers else {}
+        for label, expr in _labelled(a):
+            num = _number(expr, values)
+            if num is None:
+                continue            # not a number at the parameters' values (a function of the state)
+            tol = max(rtol * abs(num), (a.tolerance or 0.0), 1e-12)
+            exact = base.get(label)
+            if exact is not None and base_answers[q.name].exact:
+                check = _number(exact, values)
+                if check is None or not math.isclose(check, num, rel_tol=max(rtol / 10, 1e-6), abs_tol=1e-9):
+                    raise RigidkinError(f"variant {var.index}: the answer {label} of '{q.name}' is {num:.6g} by the "
+                                        f"variant's own solve but {check} from the exact answer {text(exact)}; the "
+                                        "key is refused.", hint="Narrow the --vary ranges (a regime may change).")
+            var.keys.append(KeyEntry(q.name, label, num, tol, text(exact) if exact is not None else ""))
+
+
+def _number(expr, values) -> float | None:
+    try:
+        v = complex(sp.sympify(expr).xreplace(values).evalf())
+    except (TypeError, ValueError):
+        return None
+    if abs(v.imag) > 1e-9 * max(1.0, abs(v.real)) or not math.isfinite(v.real):
+        return None
+    return v.real
+
+
+# output -------------------------------------------------------------------------------------------
+def as_data(ps: ProblemSet) -> dict:
+    return {"problem": ps.problem, "title": ps.title,
+            "variants": [{"index": v.index, "parameters": {n: {"value": x, "unit": v.units[n]}
+                                                           for n, x in v.values.items()},
+                          "kept": {n: {"value": x, "unit": v.units[n]} for n, x in v.fixed.items()},
+                          "answers": [{"question": k.question, "quantity": k.label, "value": k.value,
+                                       "tolerance": k.tolerance, "exact": k.exact} for k in v.keys],
+                          "notes": v.notes} for v in ps.variants]}
+
+
+def as_text(ps: ProblemSet) -> str:
+    lines = [f"{ps.title}: {len(ps.variants)} variants"]
+    for v in ps.variants:
+        vals = ", ".join(f"{n} = {x:g} {v.units[n]}".rstrip() for n, x in v.values.items())
+        lines.append(f"Variant {v.index}: {vals}")
+        for k in v.keys:
+            lines.append(f"    {k.question}: {k.label} = {k.value:.6g} ± {k.tolerance:.2g}")
+        for n in v.notes:
+            lines.append(f"    {n}")
+    return "\n".join(lines)
+
+
+def as_moodle(ps: ProblemSet) -> str:
+    """Moodle XML: one numerical question per variant and answer."""
+    quiz = ET.Element("quiz")
+    cat = ET.SubElement(quiz, "question", type="category")
+    ET.SubElement(ET.SubElement(cat, "category"), "text").text = f"$course$/rigidkin/{_plain(ps.title)}"
+    for v in ps.variants:
+        vals = "".join(f"<li>{html_text(n)} = {html_text(f'{x:g}')} {html_text(v.units[n])}</li>"
+                       for n, x in sorted({**v.fixed, **v.values}.items()))
+        for k in v.keys:
+            q = ET.SubElement(quiz, "question", type="numerical")
+            ET.SubElement(ET.SubElement(q, "name"), "text").text = _plain(
+                f"{ps.title} — variant {v.index} — {k.question}: {k.label}")
+            body = (f"<p>{html_text(ps.statement)}</p><p>Values:</p><ul>{vals}</ul>"
+                    f"<p>{html_text(ps.questions.get(k.question, k.question))}: give {html_text(k.label)} "
+                    "in SI units.</p>")
+            qt = ET.SubElement(q, "questiontext", format="html")
+            ET.SubElement(qt, "text").text = _plain(body)
+            ET.SubElement(q, "defaultgrade").text = "1"
+            ans = ET.SubElement(q, "answer", fraction="100")
+            ET.SubElement(ans, "text").text = repr(float(k.value))
+            ET.SubElement(ans, "tolerance").text = repr(float(k.tolerance))
+            fb = ET.SubElement(ans, "feedback", format="html")
+            ET.SubElement(fb, "text").text = f"<p>{html_text(k.exact)}</p>" if k.exact else ""
+    ET.indent(quiz)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(quiz, encoding="unicode") + "\n"
+
+
+def _plain(s: str) -> str:
+    """Text for an XML text node: characters XML 1.0 cannot hold removed (ElementTree escapes the rest)."""
+    return "".join(ch for ch in str(s) if ch in "\t\n\r" or (ord(ch) >= 0x20 and not 0xD800 <= ord(ch) <= 0xDFFF
+                                                              and ch not in "\ufffe\uffff"))
