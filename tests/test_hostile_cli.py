@@ -26,7 +26,7 @@ from rigidkin.cli import main
 
 SECONDS, BYTES = 2.0, 500 * 2**20
 #: Cases that do real work (a simulation drawn as a 4-panel figure takes 2–4 s on a loaded machine): 10 s.
-WORKING = {"plot-mathtext-title": 10.0}
+WORKING = {"plot-mathtext-title": 10.0, "escape-title-figure": 10.0}
 
 PENDULUM = """\
 title = "{title}"
@@ -218,6 +218,8 @@ CASES = [
     # text from the file shown with its control characters escaped
     ("escape-title", ["validate", "{d}/escape-title.toml"], 0, ""),
     ("escape-key", ["validate", "{d}/escape-key.toml"], 2, "\\x1b[2J"),
+    ("escape-title-figure", ["simulate", "{d}/escape-title.toml", "--t-end", "0.01", "--points", "2", "--plot",
+                             "{d}/esc.png"], 0, ""),
     ("escape-argument", ["simulate", "\x1b[31mred.toml", "--t-end", "1"], 2, "\\x1b[31m"),
     ("escape-unknown-option", ["solve", P, "--\x1b]0;x\x07"], 2, "\\x1b"),
     # the model cannot go on, names that clash

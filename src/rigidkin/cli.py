@@ -14,6 +14,7 @@ import argparse
 import contextlib
 import importlib
 import sys
+import warnings
 
 from .commands.deadline import TimeLimitReached, deadline
 from .commands.options import EXIT_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_TIME, Parser
@@ -51,7 +52,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        with deadline(getattr(args, "timeout", None), hard_stop=argv is None):
+        with deadline(getattr(args, "timeout", None), hard_stop=argv is None), _safe_warnings():
             return int(args.func(args) or EXIT_OK)
     except RigidkinError as exc:
         if args.debug:
@@ -79,6 +80,24 @@ def main(argv: list[str] | None = None) -> int:
         say(f"internal error: {type(exc).__name__}: {exc} This is a bug in rigidkin: run again with --debug for "
             "the traceback and report it with the problem file.")
         return EXIT_INPUT
+
+
+@contextlib.contextmanager
+def _safe_warnings():
+    """Warnings (ours and the libraries') shown as ``rigidkin: warning: ...`` with control characters escaped
+    (a glyph warning of matplotlib names the character of a title it cannot draw)."""
+    original = warnings.showwarning
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        text = f"rigidkin: warning: {terminal_safe(str(message), newlines=False)}\n"
+        with contextlib.suppress(OSError, ValueError):
+            (file or sys.stderr).write(text)
+
+    warnings.showwarning = show
+    try:
+        yield
+    finally:
+        warnings.showwarning = original
 
 
 def _flush() -> None:

@@ -37,6 +37,8 @@ def plot_result(result, path=None, title: str | None = None):
     import matplotlib.pyplot as plt
     from matplotlib.figure import Figure
 
+    from ..textsafe import terminal_safe
+
     fig = Figure(figsize=(10, 11), layout="constrained")
     axes = fig.subplots(4, 1, sharex=True)
     t = result.t
@@ -112,7 +114,7 @@ def plot_result(result, path=None, title: str | None = None):
                              color="0.2", bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
                                                 "alpha": 0.7})
     head = title or f"{result.title} — simulated to t = {result.t_final:.4g} s"
-    fig.suptitle(head, fontsize=12)
+    fig.suptitle(terminal_safe(head, newlines=False), fontsize=12)     # a title's control characters shown
     notes = [f"[{i}] t = {e.t:.6g} s: {e.name}" for i, e in enumerate(result.events, 1)] or ["no events"]
     modes = [f"mode {j + 1} (band {['grey', 'blue', 'orange', 'green', 'violet', 'yellow'][j % 6]}): {d}"
              for j, d in enumerate(desc)]
