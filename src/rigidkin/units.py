@@ -113,6 +113,7 @@ MAX_UNIT_TEXT = 100        # characters of a unit or quantity string
 MAX_POWER = 12             # |n| in m^n
 MAX_UNIT_PARENS = 3        # nested parentheses in a unit
 MAX_UNIT_FACTORS = 12      # unit names in one unit expression
+MAX_MAGNITUDE = 1e40       # |value| in SI units
 _UNIT_HINT = "Write SI-style units such as kg, m, s, N, N/m, m/s^2, kg*m^2, rad, deg (powers: small integers)."
 _QTY_HINT = ("Write a number, or a number and a unit such as '30 deg', '2 ft' or '9.81 m/s^2' (units: names, *, /, "
              "^ or ** with a small integer, parentheses).")
@@ -311,6 +312,9 @@ def parse_quantity(value: float | int | str, unit: str | None = None, where: str
     if not math.isfinite(mag):
         raise InputError(f"the quantity '{_shown(value)}' is not a finite number.", where=where,
                          hint="Give a finite value, e.g. 9.81 or '30 deg'.")
+    if abs(mag) > MAX_MAGNITUDE:
+        raise InputError(f"the quantity '{_shown(value)}' is too large ({mag:.3g} in SI units, at most "
+                         f"{MAX_MAGNITUDE:.0e}).", where=where, hint="Give a value of a physical size in SI units.")
     return mag
 
 

@@ -8,10 +8,13 @@ The language:
 
 * numbers (finite, real), declared names (parameters, coordinates, ``t``, ``pi``), ``+ - * / **``,
   unary minus, parentheses;
-* ``**`` with a numeric exponent of at most ``MAX_EXPONENT`` in magnitude, no powers inside an
-  exponent (``9**9**9**9`` is refused), and no number with more than ``MAX_DIGITS`` digits;
+* ``**`` with a numeric exponent of at most ``MAX_EXPONENT`` in magnitude (``MAX_NUMBER_EXPONENT`` for a
+  number raised to a power), no powers inside an exponent (``9**9**9**9`` is refused), no number with
+  more than ``MAX_DIGITS`` digits or of magnitude above ``MAX_MAGNITUDE`` (written or computed:
+  ``3**100``, ``exp(10**10)``), and functions nested at most ``MAX_CALLS_NESTED`` deep;
 * the functions ``sin cos tan asin acos atan atan2 sqrt exp log abs sign``;
-* ``dot(q)`` and ``ddot(q)``: the first and second time derivatives of a coordinate q;
+* ``dot(q)`` and ``ddot(q)``: the first and second time derivatives of a coordinate q (``ddot`` only
+  where the scope allows accelerations: in questions and expected equations, not in loads or geometry);
 * basis vectors where a vector is expected: ``FRAME.x`` / ``FRAME.y`` / ``FRAME.z``, ``FRAME.<basis
   name>`` (``F.Ex``, ``A.er``), or a basis name alone when only one frame has it (``Ex``, ``er``);
 * equations ``"lhs = rhs"`` (an ``sp.Eq``) and conditions ``"lhs > rhs"`` (``<``, ``<=``, ``>=``).
@@ -27,12 +30,13 @@ from __future__ import annotations
 import ast
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
 from ..errors import InputError
+from ..model.checks import numeric_value
 
 t = dynamicsymbols._t
 
@@ -41,8 +45,11 @@ MAX_LENGTH = 1000          # characters
 MAX_NESTING = 20           # nested brackets
 MAX_DEPTH = 100            # depth of the syntax tree
 MAX_NODES = 400            # nodes of the syntax tree
-MAX_EXPONENT = 100         # |p| in x**p
+MAX_EXPONENT = 12          # |p| in x**p (x not a number: (x + 1)**p would expand into p + 1 terms)
+MAX_NUMBER_EXPONENT = 100  # |p| in a**p with a number a (6.67*10**-11)
 MAX_DIGITS = 40            # digits of a number (written or computed)
+MAX_MAGNITUDE = 1e40       # |value| of a number written or computed (3**100, exp(10**10) are refused)
+MAX_CALLS_NESTED = 4       # functions called inside functions: sin(exp(cos(x)))
 
 #: The whitelisted functions: name → (sympy function, number of arguments).
 FUNCTIONS: dict[str, tuple[Callable, int]] = {
@@ -95,15 +102,19 @@ class Scope:
     vectors: dict[str, Vector] = field(default_factory=dict)
     ambiguous: dict[str, list[str]] = field(default_factory=dict)
     functions: dict[str, Callable] = field(default_factory=dict)
+    #: the highest time derivative ``dot``/``ddot`` may write (2: accelerations; 1: rates only, as in loads)
+    max_derivative: int = 2
 
     def with_names(self, extra: Mapping[str, sp.Basic]) -> Scope:
         """A copy of this scope with more scalar names (e.g. reaction names, the damper speed v)."""
-        return Scope({**self.names, **extra}, self.coordinates, self.frames, self.vectors, self.ambiguous,
-                     self.functions)
+        return replace(self, names={**self.names, **extra})
 
     def with_functions(self, extra: Mapping[str, Callable]) -> Scope:
-        return Scope(self.names, self.coordinates, self.frames, self.vectors, self.ambiguous,
-                     {**self.functions, **extra})
+        return replace(self, functions={**self.functions, **extra})
+
+    def with_max_derivative(self, order: int) -> Scope:
+        """A copy of this scope in which ``dot``/``ddot`` may write derivatives up to ``order``."""
+        return replace(self, max_derivative=order)
 
     def add_frame(self, name: str, basis: tuple[str, str, str], unit_vectors: tuple[Vector, Vector, Vector]):
         """Make ``name.x/.y/.z`` and ``name.<basis>`` known, and each basis name alone when unambiguous."""
@@ -134,6 +145,7 @@ def _snippet(text: str) -> str:
 class _Parser:
     def __init__(self, text: str, scope: Scope, where: str | None, offset: int = 0):
         self.text, self.scope, self.where, self.offset = text, scope, where, offset
+        self.calls = 0              # functions being called around the node being built
 
     def fail(self, message: str, node: ast.AST | None = None, hint: str | None = _HINT) -> InputError:
         col = getattr(node, "col_offset", None)
@@ -315,18 +327,24 @@ class _Parser:
         if not expo.is_number:
             raise self.fail(f"the exponent {expo} is not a number", node,
                             hint=f"Exponents must be numbers of magnitude at most {MAX_EXPONENT}.")
-        e = complex(sp.N(expo))
-        if e.imag or not math.isfinite(e.real) or abs(e.real) > MAX_EXPONENT:
-            raise self.fail(f"the exponent {expo} is too large (at most {MAX_EXPONENT} in magnitude)", node)
+        e = numeric_value(expo)
+        limit = MAX_NUMBER_EXPONENT if base.is_number else MAX_EXPONENT
+        if e is None or e.imag or not math.isfinite(e.real) or abs(e.real) > limit:
+            raise self.fail(f"the exponent {expo} is too large (at most {limit} in magnitude"
+                            f"{' for a power of a symbol' if limit == MAX_EXPONENT else ''})", node,
+                            hint="Write the power out with intermediate parameters, or check the exponent.")
         if base.is_number:
-            b = complex(sp.N(base))
-            if b != 0 and abs(e.real) * math.log10(abs(b)) > MAX_DIGITS * 25:
-                raise self.fail("the power is too large a number", node)
+            b = numeric_value(base)
+            if b is None or not math.isfinite(abs(b)):
+                raise self.fail("the base of the power is not a finite number", node)
+            if b != 0 and abs(e.real) * math.log10(abs(b)) > math.log10(MAX_MAGNITUDE):
+                raise self.fail(f"the power is too large a number (above {MAX_MAGNITUDE:.0e})", node)
             if b == 0 and e.real < 0:
                 raise self.fail("division by zero (0 to a negative power)", node)
         result = base**expo
         for p in sp.preorder_traversal(result):
-            if isinstance(p, sp.Pow) and p.exp.is_number and abs(complex(sp.N(p.exp)).real) > MAX_EXPONENT:
+            if isinstance(p, sp.Pow) and not p.base.is_number and p.exp.is_number \
+                    and abs(complex(sp.N(p.exp, 15)).real) > MAX_EXPONENT:
                 raise self.fail(f"the combined exponent {p.exp} is too large (at most {MAX_EXPONENT})", node)
         return result
 
@@ -354,10 +372,34 @@ class _Parser:
         fn, arity = FUNCTIONS[name]
         if len(node.args) != arity:
             raise self.fail(f"{name} takes {arity} argument{'s' if arity > 1 else ''}, not {len(node.args)}", node)
-        args = [self.build(a) for a in node.args]
+        self.calls += 1
+        if self.calls > MAX_CALLS_NESTED:
+            raise self.fail(f"functions are nested more than {MAX_CALLS_NESTED} deep", node,
+                            hint="Split the expression with intermediate parameters.")
+        try:
+            args = [self.build(a) for a in node.args]
+        finally:
+            self.calls -= 1
         if any(isinstance(a, Vector) for a in args):
             raise self.fail(f"{name} of a vector is not defined", node)
-        return fn(*args)
+        for a in args:
+            self.bounded(a, node)
+        return self.bounded(fn(*args), node)
+
+    def bounded(self, value, node):
+        """``value``, refused when it is a number that is not finite, not real, or too large."""
+        if isinstance(value, sp.Basic) and not value.free_symbols:
+            v = numeric_value(value)
+            if value.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+                raise self.fail("it evaluates to an infinite or undefined value (division by zero?)", node, hint=None)
+            if v is not None and not (math.isfinite(v.real) and math.isfinite(v.imag)
+                                      and abs(v) <= MAX_MAGNITUDE):
+                raise self.fail(f"{sp.sstr(value)[:40]} is too large a number (above {MAX_MAGNITUDE:.0e}) or not "
+                                "finite", node, hint="Write numbers of a sensible size in SI units.")
+            if v is not None and abs(v.imag) > 1e-12 * max(1.0, abs(v.real)):
+                raise self.fail(f"{sp.sstr(value)[:40]} is a complex number, not a real one", node,
+                                hint="acos and asin take values between -1 and 1; log and sqrt take values ≥ 0.")
+        return value
 
     def _derivative(self, node: ast.Call, name: str):
         if len(node.args) != 1 or not isinstance(node.args[0], ast.Name):
@@ -367,6 +409,12 @@ class _Parser:
             known = ", ".join(self.scope.coordinates) or "none"
             raise self.fail(f"'{q}' is not a coordinate, so {name}({q}) is not defined", node,
                             hint=f"The coordinates are: {known}.")
+        order = 1 if name == "dot" else 2
+        if order > self.scope.max_derivative:
+            raise self.fail(f"{name}({q}), an acceleration, cannot appear here: a load, a constraint or the geometry "
+                            "depends on the state (coordinates and rates), not on accelerations", node,
+                            hint="Write the load in the coordinates and their rates (dot(q)); accelerations are "
+                                 "unknowns the laws solve for.")
         return self.scope.coordinates[q].diff(t, 1 if name == "dot" else 2)
 
     # results ------------------------------------------------------------------------------------
@@ -382,7 +430,7 @@ class _Parser:
             raise self.fail("it evaluates to an infinite or undefined value (division by zero?)", hint=None)
         if value.has(sp.I):
             raise self.fail("it evaluates to a complex number", hint="Expressions must be real.")
-        return value
+        return self.bounded(value, None)
 
 
 def _prepare(text, where: str | None) -> str:
@@ -408,6 +456,9 @@ def _number(value, where):
         return sp.Integer(value)
     if not math.isfinite(value):
         raise InputError(f"the number {value} is not finite.", where=where, hint="Give a finite real number.")
+    if abs(value) > MAX_MAGNITUDE:
+        raise InputError(f"the number {value:g} is too large (above {MAX_MAGNITUDE:.0e}).", where=where,
+                         hint="Give the value in SI units of a sensible size.")
     return sp.Float(value)
 
 
@@ -496,18 +547,11 @@ def parse_condition(text, scope: Scope, where: str | None = None) -> sp.core.rel
 
 
 def check_name(name: str, kind: str, where: str | None = None) -> str:
-    """A name a problem file declares: an ASCII identifier, no leading underscore, not a reserved word."""
-    import keyword
+    """A name a problem file declares: an ASCII identifier as :func:`rigidkin.model.checks.check_identifier`
+    allows it (no keyword, no name the engine makes), and not a word of the expression language."""
+    from ..model.checks import check_identifier
 
-    if not isinstance(name, str) or not name.isidentifier() or not name.isascii():
-        raise InputError(f"'{name}' is not a valid name for a {kind}.", where=where,
-                         hint="Use ASCII letters, digits and underscores, starting with a letter.")
-    if name.startswith("_"):
-        raise InputError(f"the {kind} name '{name}' starts with '_'.", where=where,
-                         hint="Names start with a letter.")
-    if keyword.iskeyword(name) or name in ("True", "False", "None"):
-        raise InputError(f"the {kind} name '{name}' is a Python keyword and cannot be used in expressions.",
-                         where=where, hint="Choose another name.")
+    check_identifier(name, kind, where, InputError)
     if name in RESERVED:
         raise InputError(f"the {kind} name '{name}' shadows the built-in '{name}' of the expression language.",
                          where=where, hint=f"Choose another name; reserved: {', '.join(sorted(RESERVED))}.")

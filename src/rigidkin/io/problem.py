@@ -22,11 +22,12 @@ from sympy.physics.vector import Vector
 
 from ..analysis.questions import Question
 from ..errors import InputError, ModelError, RigidkinError
+from ..model.checks import REAL, check_problem_name, generated_clash, problem_name, require
 from ..model.constraints import Contact
 from ..model.loads import V as DAMPER_SPEED
 from ..model.shapes import SHAPES
 from ..model.system import System
-from ..units import to_si, unit_dimension
+from ..units import TIME, to_si, unit_dimension
 from . import schema as S
 from .expressions import (
     Scope,
@@ -231,7 +232,7 @@ class _Builder:
     def __init__(self, spec: S.ProblemFile, locator: Locator, name: str):
         self.spec, self.loc = spec, locator
         self.s = System(name, statement=spec.statement, title=spec.title)
-        self.scope = default_scope()
+        self.scope = default_scope().with_max_derivative(1)     # the model: no accelerations in loads
         F = self.s.inertial
         self.scope.add_frame("F", F.basis, (F.x, F.y, F.z))
         self.reactions: dict[str, sp.Symbol] = {}
@@ -253,15 +254,24 @@ class _Builder:
                              hint="Check the expressions and names in this table.") from None
 
     def scalar(self, value, path, scope=None) -> sp.Expr:
-        return parse_scalar(value, scope or self.scope, self.where(*path))
+        """A scalar expression, real and finite once the parameters' values are put in."""
+        where = self.where(*path)
+        return require(parse_scalar(value, scope or self.scope, where), REAL, "value", where,
+                       self.s.parameter_values(), InputError)
 
     def vector(self, value, path, scope=None) -> Vector:
-        return parse_vector(value, scope or self.scope, self.where(*path))
+        where = self.where(*path)
+        vec = parse_vector(value, scope or self.scope, where)
+        for measure, _frame in vec.args:
+            for comp in measure:
+                require(comp, REAL, "vector component", where, self.s.parameter_values(), InputError)
+        return vec
 
-    def value(self, value, path) -> sp.Expr:
-        """A number, a quantity with a unit ('30 deg', converted to SI) or an expression."""
+    def value(self, value, path, dimension=None) -> sp.Expr:
+        """A number, a quantity with a unit ('30 deg', converted to SI; of ``dimension`` if given) or an
+        expression."""
         if isinstance(value, str) and _UNIT_QUANTITY.match(value):
-            return sp.Float(to_si(value, None, self.where(*path)))
+            return sp.Float(to_si(value, None, self.where(*path), dimension))
         return self.scalar(value, path, self._question_scope())
 
     def _lookup(self, table: dict, kind: str, name: str | None, path, optional=False):
@@ -352,7 +362,18 @@ class _Builder:
                 self.reactions[r.name] = r
         for name, ld in sp_.loads.items():
             self.load(name, ld)
+        self.generated_names()
         return self.s
+
+    def generated_names(self) -> None:
+        """Refuse a parameter or coordinate named as the engine names something it makes (R_Ox_hat, theta_dot_end)."""
+        coords = list(self.s.coordinate_info)
+        for table in ("parameters", "coordinates"):
+            for name in getattr(self.spec, table):
+                clash = generated_clash(name, coords, self.reactions)
+                if clash:
+                    raise InputError(f"the name '{name}' is {clash}.", where=self.where(table, name),
+                                     hint="Choose another name.")
 
     def parameter(self, name, p: S.ParameterSpec):
         path = ("parameters", name)
@@ -639,7 +660,8 @@ class _Builder:
 
     # questions --------------------------------------------------------------------------------------------
     def _question_scope(self) -> Scope:
-        return self.scope.with_names(self.reactions).with_functions({"slip": _slip_handler(self.s)})
+        return self.scope.with_names(self.reactions).with_functions({"slip": _slip_handler(self.s)}) \
+            .with_max_derivative(2)
 
     def state(self, table: dict, path) -> dict:
         out = {}
@@ -654,7 +676,8 @@ class _Builder:
                 raise InputError(f"'{key}' is not a coordinate or the rate of one.", where=self.where(*kpath),
                                  hint="A state gives coordinates and their rates, e.g. "
                                       "{ theta = 0, \"dot(theta)\" = 0 }.")
-            out[target] = self.value(v, kpath)
+            c = self.s.coordinate_of(target if target in coords else target.expr)
+            out[target] = self.value(v, kpath, c.dimension if target in coords else c.dimension / TIME)
         return out
 
     def mode(self, table: dict, path) -> dict:
@@ -802,7 +825,10 @@ def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") ->
     path = Path(path)
     locator = Locator(text, str(path))
     spec = validate_schema(data, locator)
-    name = spec.name or path.stem
+    if spec.name is not None:
+        name = check_problem_name(spec.name, locator.where(("name",)), InputError)
+    else:
+        name = problem_name(path.stem)
     builder = _Builder(spec, locator, name)
     system = builder.build()
     questions = builder.questions(spec.ask)

@@ -87,6 +87,26 @@ def check_identifier(name, kind: str, where: str | None = None, error: type = Mo
     return name
 
 
+_PROBLEM_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_-]*")
+
+
+def check_problem_name(name, where: str | None = None, error: type = ModelError) -> str:
+    """The name of a problem (``name = "heavy-top"``): ASCII letters, digits, '_' and '-', starting with a
+    letter, at most ``MAX_NAME`` characters (it names files and appears in generated code's comments)."""
+    if not isinstance(name, str) or len(name) > MAX_NAME or not _PROBLEM_NAME.fullmatch(name):
+        shown = repr(name) if not isinstance(name, str) or len(name) <= 40 else repr(name[:37] + "...")
+        raise _err(error, f"{shown} is not a valid problem name.", where,
+                   f"Use ASCII letters, digits, '_' and '-', starting with a letter (at most {MAX_NAME} characters), "
+                   "e.g. name = \"heavy-top\".")
+    return name
+
+
+def problem_name(stem: str) -> str:
+    """A valid problem name made from a file name (characters other than letters, digits, '_', '-' → '_')."""
+    name = re.sub(r"[^A-Za-z0-9_-]", "_", stem.encode("ascii", "replace").decode())[:MAX_NAME]
+    return name if name[:1].isalpha() else ("p" + name)[:MAX_NAME]
+
+
 def generated_clash(name: str, coordinates, reactions) -> str | None:
     """The engine's name that ``name`` would equal, given the coordinate and reaction names (None if none)."""
     for base in (*coordinates, *reactions):
@@ -191,17 +211,17 @@ def require(value, rule: str, what: str, where: str | None = None, values: dict 
             raise _err(error, f"the {what} {shown} is not finite{given}.", where,
                        "Give a finite value (check divisions by zero and huge powers).")
         if abs(num.imag) > 1e-12 * max(1.0, abs(num.real)):
-            raise _err(error, f"the {what} {shown} is not a real number (it is {num.real:.6g}{num.imag:+.6g}i; "
-                              "e.g. acos of a number beyond ±1, the log or square root of a negative number).",
-                       where, "Give a real value.")
+            raise _err(error, f"the {what} {shown} is not a real number (it is the complex number "
+                              f"{num.real:.6g}{num.imag:+.6g}i: acos of a number beyond ±1, the log or square root of "
+                              "a negative number?).", where, "Give a real value.")
         bad = rule == POSITIVE and num.real <= 0 or rule == NONNEGATIVE and num.real < 0
         if bad:
             hint = f"A {what} must be {_RULE_WORDS[rule]}."
             raise _err(error, f"the {what} {shown} is {num.real:.6g}{given}, but it must be {_RULE_WORDS[rule]}.",
                        where, hint)
         return value
-    if expr.is_real is False and expr.is_number:
-        raise _err(error, f"the {what} {shown} is not a real number.", where, "Give a real value.")
+    if expr.is_extended_real is False:
+        raise _err(error, f"the {what} {shown} is not a real number (it is complex).", where, "Give a real value.")
     if rule == POSITIVE and (expr.is_positive is False):
         raise _err(error, f"the {what} {shown} is never positive (with the parameters as declared), but it must be "
                           "positive.", where, f"A {what} must be positive; check its sign.")

@@ -17,6 +17,8 @@ from ..units import NAMED, ONE, Dimension, to_si, unit_dimension
 from . import constraints as C
 from . import loads as L
 from .bodies import Body
+from .chains import remember, shallow
+from .checks import NONNEGATIVE, POSITIVE, check_identifier, require
 from .definitions import Defined, Definition
 from .definitions import define as define_quantity
 from .frames import Frame, make_reference_frame
@@ -81,9 +83,7 @@ class System:
 
     # names ---------------------------------------------------------------------------------------
     def _claim(self, name: str, kind: str, namespace: str = "symbol", owner: str | None = None) -> None:
-        if not isinstance(name, str) or not name.isidentifier() or name.startswith("_"):
-            raise ModelError(f"'{name}' is not a valid name for a {kind}: use letters, digits and "
-                             "underscores, starting with a letter.", where=f"{kind} {name}")
+        check_identifier(name, kind, owner or f"{kind} {name}")
         key = f"{namespace}:{name}"
         if key in self._names:
             of = f" of {owner}" if owner else ""
@@ -113,7 +113,11 @@ class System:
         else:
             dim = ONE
         si_unit = unit if unit is not None and str(unit).strip() not in ("", "1", "-") else None
-        val = None if value is None else to_si(value, si_unit, where)   # a number is in ``unit``
+        val = None if value is None else to_si(value, si_unit, where, None if si_unit else dim)
+        if positive and val is not None and val <= 0:
+            raise ModelError(f"the value {value!r} of a positive parameter is {val:g}.", where=where,
+                             hint="Give a positive value, or declare the parameter with positive=False (in a "
+                                  "problem file: positive = false) if it may be zero or negative.")
         sym = sp.Symbol(name, positive=True) if positive else sp.Symbol(name, real=True)
         self._claim(name, "parameter")
         self._parameters[name] = Parameter(name, sym, description, unit or "", dim, val)
@@ -134,8 +138,8 @@ class System:
         assumptions = {"positive": True} if positive else {"real": True}
         sym = dynamicsymbols(name, **assumptions)
         where = f"coordinate {name}"
-        q0 = None if initial is None else to_si(initial, None, where)
-        u0 = None if rate is None else to_si(rate, None, where)
+        q0 = None if initial is None else to_si(initial, None, f"{where}, initial value", dim)
+        u0 = None if rate is None else to_si(rate, None, f"{where}, initial rate", dim / NAMED["time"])
         self._coordinates[name] = Coordinate(name, sym, sense, kind, dim, q0, u0, description)
         return sym
 
@@ -202,6 +206,7 @@ class System:
             if angles is None or len(angles) != 3:
                 raise ModelError("a rotation sequence needs three angles.", where=f"frame {name}")
             ref.orient_body_fixed(parent.ref, tuple(angles), sequence)
+            remember(ref, parent.ref, None, None)
             fr = Frame(name, ref, basis, parent, None, None, sequence, tuple(angles), description)
         else:
             ang = _expr(0 if angle is None else angle, f"frame {name}")
@@ -209,6 +214,7 @@ class System:
             if not isinstance(ax, Vector):
                 raise ModelError(f"axis must be a basis name or a vector, not {axis!r}.", where=f"frame {name}")
             ref.orient_axis(parent.ref, ax, ang)
+            remember(ref, parent.ref, ax.express(parent.ref).normalize().to_matrix(parent.ref), ang)
             fr = Frame(name, ref, basis, parent, ang, ax, None, None, description)
         self.frames[name] = fr
         return fr
@@ -249,7 +255,7 @@ class System:
         """A point located by ``offset`` from ``from_`` (the origin by default); optionally fixed in ``body``."""
         self._claim(name, "point", "point")
         parent = self._check_point(from_, f"point {name}") if from_ is not None else self.origin
-        vec = self._check_vector(offset, f"point {name}")
+        vec = shallow(self._check_vector(offset, f"point {name}"), self.inertial.ref)
         p = Point(name, parent, vec, None, description)
         self.points[name] = p
         if body is not None:
@@ -282,6 +288,7 @@ class System:
             raise ModelError(f"shape must be one of rigidkin.shapes, not {shape!r}.", where=where)
         self._check_frame(frame, where)
         ref = self._check_point(at, where)
+        shape.check(self.parameter_values(), where)
         offset = shape.centre_offset(frame)
         if offset == Vector(0):
             centre = ref
@@ -306,7 +313,8 @@ class System:
                normal: Vector | None = None) -> Circle:
         """A circular (spherical in 3D) surface; the body touches it from ``inside`` or outside."""
         p = self._check_point(centre, f"circle {name}")
-        return Circle(p, _expr(radius, f"circle {name}"), inside, self._check_body(body, name, True), name, normal)
+        return Circle(p, self._value(radius, f"circle {name}", POSITIVE, "radius"), inside,
+                      self._check_body(body, name, True), name, normal)
 
     plane = line
     sphere = circle
@@ -352,9 +360,10 @@ class System:
         if not isinstance(surface, (Line, Circle)):
             raise ModelError("surface must be a line/plane or circle/sphere (System.line, System.circle).",
                              where=where)
-        fr = _friction(friction, where)
-        rad = _expr(radius, where)
-        con = C.Contact(name, body=b, centre=c, radius=rad, surface=surface, friction=fr,
+        fr = self._friction(friction, where)
+        rad = self._value(radius, where, NONNEGATIVE, "radius")
+        con = C.Contact(name, body=b, centre=c, radius=rad,
+                        surface=surface, friction=fr,
                         unilateral=unilateral, normal_name=normal_name, friction_name=friction_name,
                         description=description, arc=arc_for(arc, b, c, rad, where))
         for sym in con.reactions():
@@ -372,8 +381,9 @@ class System:
         where = f"contact {name}"
         b = self._check_body(body, where)
         c = self._check_point(centre, where) if centre is not None else b.centre
-        con = DiskContact(name, body=b, centre=c, radius=_expr(radius, where), surface=surface,
-                          friction=_friction(friction, where), unilateral=unilateral, normal_name=normal_name,
+        con = DiskContact(name, body=b, centre=c, radius=self._value(radius, where, POSITIVE, "radius"),
+                          surface=surface, friction=self._friction(friction, where), unilateral=unilateral,
+                          normal_name=normal_name,
                           friction_name=friction_name, description=description,
                           axis=self._check_vector(axis, where))
         for sym in con.reactions():
@@ -390,7 +400,7 @@ class System:
         p = self._check_point(point, where) if point is not None else b.reference
         thr = self._check_point(through, where) if through is not None else self.origin
         con = C.Collar(name, body=b, point=p, through=thr, along=self._check_vector(along, where),
-                       track_body=self._check_body(track_body, where, True), friction=_friction(friction, where),
+                       track_body=self._check_body(track_body, where, True), friction=self._friction(friction, where),
                        normal_name=normal_name, couple_name=couple_name, description=description)
         for sym in con.reactions():
             self._claim(sym.name, "reaction", owner=f"collar {name}")
@@ -414,7 +424,8 @@ class System:
             if len(bodies) != len(pts):
                 raise ModelError(f"give one body (or None) for each of the {len(pts)} points.", where=where)
             bs = tuple(self._check_body(b, where, allow_none=True) for b in bodies)
-        con = C.Cable(name, points=pts, bodies=bs, length=_expr(length, where), tension_name=tension_name,
+        con = C.Cable(name, points=pts, bodies=bs, length=self._value(length, where, POSITIVE, "length"),
+                      tension_name=tension_name,
                       description=description)
         self._claim(con.T.name, "reaction", owner=f"cable {name}")
         return self._add_constraint(con)
@@ -447,7 +458,8 @@ class System:
     def gravity(self, g, direction: Vector | None = None, name: str = "gravity") -> None:
         """Uniform gravity of magnitude ``g`` along the unit vector ``direction`` (default −Ey)."""
         d = -self.inertial.y if direction is None else self._check_vector(direction, f"load {name}")
-        self._add_load(L.Gravity(name, g=_expr(g, f"load {name}"), direction=d))
+        self._add_load(L.Gravity(name, g=self._value(g, f"load {name}", NONNEGATIVE, "gravitational acceleration"),
+                                 direction=d))
 
     def force(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "",
               on=None) -> L.Force:
@@ -485,7 +497,8 @@ class System:
         ma = L.check_end(name, "spring", pa, ba, on_a is not None, ref)
         mb = L.check_end(name, "spring", pb, bb, on_b is not None, ref)
         return self._add_load(L.Spring(name, point_a=pa, body_a=ba, point_b=pb, body_b=bb, moving_a=ma, moving_b=mb,
-                                       stiffness=_expr(stiffness, where), natural_length=_expr(natural_length, where),
+                                       stiffness=self._value(stiffness, where, NONNEGATIVE, "stiffness"),
+                                       natural_length=self._value(natural_length, where, NONNEGATIVE, "natural length"),
                                        description=description))
 
     def torsional_spring(self, name: str, body_a, stiffness, angle, natural_angle=0, body_b=None,
@@ -494,7 +507,8 @@ class System:
         where = f"torsional spring {name}"
         return self._add_load(L.TorsionalSpring(
             name, body_a=self._check_body(body_a, where), body_b=self._check_body(body_b, where, True),
-            stiffness=_expr(stiffness, where), angle=_expr(angle, where), natural_angle=_expr(natural_angle, where),
+            stiffness=self._value(stiffness, where, NONNEGATIVE, "stiffness"), angle=_expr(angle, where),
+            natural_angle=_expr(natural_angle, where),
             axis=self.inertial.z if axis is None else self._check_vector(axis, where), description=description))
 
     def damper(self, name: str, point_a: Point | str, law, along: Vector | None = None,
@@ -532,10 +546,24 @@ class System:
         where = f"friction {name}"
         return self._add_load(L.SlidingFriction(
             name, body=self._check_body(body, where), centre=self._check_point(centre, where),
-            radius=_expr(radius, where), normal=self._check_vector(normal, where), mu=_expr(mu, where),
+            radius=self._value(radius, where, NONNEGATIVE, "radius"), normal=self._check_vector(normal, where),
+            mu=self._value(mu, where, NONNEGATIVE, "friction coefficient µ"),
             normal_force=_expr(normal_force, where), against_body=self._check_body(against_body, where, True),
             against_point=self._check_point(against_point, where) if against_point is not None else None,
             description=description))
+
+    def _value(self, value, where: str, rule: str, what: str) -> sp.Expr:
+        """A number or expression that must obey ``rule`` (with the parameters' numeric values put in)."""
+        return require(_expr(value, where), rule, what, where, self.parameter_values())
+
+    def _friction(self, friction, where):
+        """``_friction`` with each coefficient µ checked first (real, finite, ≥ 0 with the parameters' values)."""
+        given = friction.values() if isinstance(friction, dict) else \
+            (friction.mu, friction.mu_s) if isinstance(friction, C.Coulomb) else (friction,)
+        for v in given:
+            if isinstance(v, (int, float, sp.Basic)) and not isinstance(v, bool):
+                require(v, NONNEGATIVE, "friction coefficient µ", where, self.parameter_values())
+        return _friction(friction, where)
 
     # solving -------------------------------------------------------------------------------------
     def solve(self, method: str = "newton-euler", mode: dict[str, str] | None = None,
