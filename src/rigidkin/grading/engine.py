@@ -33,6 +33,19 @@ class Candidate:
     law: str | None = None
     point: str | None = None
     mistake: str | None = None       # None: the correct form; else the cause, in words
+    correct: sp.Expr | None = None   # for a mistaken form: the correct equation it stands in for
+
+
+@dataclass(eq=False)
+class Spot:
+    """The material point of a body at a contact (moments may be taken about it), by the contact's name."""
+
+    name: str
+    location: Vector
+    body: object = None
+
+    def position(self) -> Vector:
+        return self.location
 
 
 @dataclass
@@ -72,6 +85,20 @@ class Reference:
         if key not in self._rows:
             self._rows[key] = self.sampler.row(to_plain(self.scalar(expr, regime)))
         return self._rows[key]
+
+    @property
+    def n_acc(self) -> int:
+        return len(self.solution.coordinates)
+
+    def determinate_like(self, rows, regime) -> bool:
+        """The rows imply as many equations of motion as the engine's balance equations do (not more: an
+        inconsistent set implies anything; not fewer)."""
+        from .space import free_dim
+
+        key = ("free", id(regime))
+        if key not in self._rows:
+            self._rows[key] = free_dim(self.basis(regime), self.n_acc)
+        return free_dim(rows, self.n_acc) == self._rows[key]
 
     def basis(self, regime, exprs=None):
         return [self.row(e, regime) for e in (self.equations if exprs is None else exprs)]
@@ -116,14 +143,35 @@ class Reference:
         c = s.constraints.get(name)
         if c is not None and getattr(c, "point", None) is not None:
             return c.point
+        for spot in self.contact_spots():
+            if spot.name == name:
+                return spot
         if name in s.bodies:
             return s.bodies[name].centre
         return None
+
+    def contact_spots(self, body=None) -> list:
+        """A Spot for each contact (of ``body``) that is not open in this mode."""
+        key = ("spots",)
+        if key not in self._rows:
+            out = []
+            for name, c in self.system.constraints.items():
+                if c.kind == "contact" and self.setup.states.get(name) != "open":
+                    try:
+                        out.append(Spot(name, self.setup.vector(c.location(self.kin)), c.body))
+                    except (AttributeError, TypeError, ValueError):
+                        continue
+            self._rows[key] = out
+        return [s for s in self._rows[key] if body is None or s.body is body]
 
     def body_points(self, body):
         out = [body.centre]
         for p in self.system.points.values():
             if p not in out and (p.body is body or p is body.reference):
+                out.append(p)
+        for c in self.system.constraints.values():       # pins joining the body to another
+            p = getattr(c, "point", None)
+            if p is not None and p not in out and body in (getattr(c, "body_a", None), getattr(c, "body_b", None)):
                 out.append(p)
         return out
 

@@ -30,9 +30,12 @@ class TermDiff:
     extra: tuple          # student's terms the engine does not have
     missing: tuple        # engine's terms (scaled) the student does not have
 
+    accel_matched: int = 0  # matched terms with an acceleration: the scale that keeps them is preferred
+
     @property
-    def score(self) -> int:
-        return self.matched * 2 + len(self.signs) + len(self.coefficients) - len(self.extra) - len(self.missing)
+    def score(self) -> float:
+        return (self.matched * 2 + 0.1 * self.accel_matched + len(self.signs) + len(self.coefficients)
+                - len(self.extra) - len(self.missing))
 
     def describe(self) -> list[str]:
         out = []
@@ -87,13 +90,14 @@ def term_diff(student, engine) -> TermDiff | None:
 
 def _pair(U, R, scale) -> TermDiff:
     left_u, left_r = list(U), list(R)
-    matched = 0
+    matched = accel = 0
     for u in list(left_u):
         for r in left_r:
             if _same(u, r):
                 left_u.remove(u)
                 left_r.remove(r)
                 matched += 1
+                accel += any(sum(c for _, c in d.variable_count) == 2 for d in u.atoms(sp.Derivative))
                 break
     signs, coeffs = [], []
     for u in list(left_u):
@@ -111,7 +115,7 @@ def _pair(U, R, scale) -> TermDiff:
                 left_u.remove(u)
                 left_r.remove(r)
                 break
-    return TermDiff(scale, matched, tuple(signs), tuple(coeffs), tuple(left_u), tuple(left_r))
+    return TermDiff(scale, matched, tuple(signs), tuple(coeffs), tuple(left_u), tuple(left_r), accel)
 
 
 def dimension_problem(ref, lhs, rhs) -> str | None:

@@ -44,8 +44,8 @@ def _vector_values(ref: Reference, v: Vector, regime=None) -> np.ndarray:
     return ref.sampler.evaluate(comps)
 
 
-def same_vector(ref: Reference, a: Vector, b: Vector) -> bool:
-    va, vb = _vector_values(ref, a), _vector_values(ref, b)
+def same_vector(ref: Reference, a: Vector, b: Vector, regime=None) -> bool:
+    va, vb = _vector_values(ref, a, regime), _vector_values(ref, b, regime)
     return bool(space.vanishes(va - vb, np.abs(va) + np.abs(vb)))
 
 
@@ -116,7 +116,11 @@ def grade_kinematics(ref: Reference, st: Step, carried: Carried) -> StepResult:
 
 def _vec_text(ref: Reference, v: Vector, like: Vector) -> str:
     parts = []
-    for e, name in _basis_of(ref, like):
+    axes = _basis_of(ref, like)
+    if len(axes) == 2:
+        fr = next(f for f in ref.system.frames.values() if f.x == axes[0][0])
+        axes = axes + [(fr.z, fr.basis[2])]
+    for e, name in axes:
         c = ref.kin.simplify_expr(ref.scalar(v.dot(e)))
         if c != 0:
             parts.append(f"({text(c)}) {name}")
@@ -165,7 +169,8 @@ def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
             pname = parts[1].strip()
             P = ref.point_of(pname)
             if P is None:
-                raise _unreadable(f"'{pname[:40]}' is not a point of the problem (points: {', '.join(ref.system.points)})")
+                raise _unreadable(f"'{pname[:40]}' is not a point of the problem "
+                                  f"(points: {', '.join(ref.system.points)})")
             loc = kin.position(P)
         student.append((ref.setup.vector(vec), loc, item))
     _, _, apps = body_loads(ref.setup, body)
@@ -174,20 +179,39 @@ def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
     res = StepResult(st.index, st.kind, INCORRECT)
     res.expected = "; ".join(f"{a[2]}: {_vec_text(ref, a[0], a[0])}" + ("" if a[1] is None else
                                                                        f" at {_where(ref, a[1])}") for a in engine)
+    best = None
+    for reg in ref.regimes():
+        fb, diffs = _compare_loads(ref, student, engine, body, reg)
+        if best is None or len(fb) < len(best[0]):
+            best = (fb, diffs)
+        if not fb:
+            break
+    res.feedback, res.differences = best
+    if not res.feedback:
+        res.verdict = CORRECT
+    else:
+        carried.loads[body] = (st.index, [(s[0], s[1]) for s in student])
+    return res
+
+
+def _compare_loads(ref: Reference, student, engine, body, reg):
     left_s, left_e = list(range(len(student))), list(range(len(engine)))
-    fb = []
+    fb, diffs = [], []
+
+    def same(a, b):
+        return same_vector(ref, a, b, reg)
 
     def on_line(s, e):
         if (s[1] is None) != (e[1] is None):
             return False
-        return s[1] is None or same_vector(ref, (s[1] - e[1]).cross(e[0]), Vector(0))
+        return s[1] is None or same((s[1] - e[1]).cross(e[0]), Vector(0))
 
     for sign, how in ((1, None), (-1, "sign")):
         for i in list(left_s):
             s = student[i]
             for j in left_e:
                 e = engine[j]
-                if same_vector(ref, s[0], sign * e[0]):
+                if same(s[0], sign * e[0]):
                     if not on_line(s, e):
                         fb.append(f"wrong point: {e[2]} acts at {_where(ref, e[1])}, not where you put it "
                                   f"({s[2]})" if e[1] is not None else f"{e[2]} is a couple, not a force")
@@ -200,7 +224,7 @@ def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
     for i in list(left_s):
         s = student[i]
         for j, k in [(j, k) for j in left_e for k in left_e if j < k]:
-            if same_vector(ref, s[0], engine[j][0] + engine[k][0]) and on_line(s, engine[j]) and on_line(s, engine[k]):
+            if same(s[0], engine[j][0] + engine[k][0]) and on_line(s, engine[j]) and on_line(s, engine[k]):
                 left_s.remove(i)
                 left_e.remove(j)
                 left_e.remove(k)
@@ -209,20 +233,15 @@ def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
         e = engine[j]
         fb.append(f"missing from the diagram: {e[2]} ({_vec_text(ref, e[0], e[0])}"
                   + ("" if e[1] is None else f" at {_where(ref, e[1])}") + ")")
-        res.differences.append(("", e[2]))
+        diffs.append(("", e[2]))
     for i in left_s:
         fb.append(f"extra in the diagram: {student[i][2]} (no such load acts on {body.name})")
-        res.differences.append((student[i][2], ""))
-    res.feedback = fb
-    if not fb:
-        res.verdict = CORRECT
-    else:
-        carried.loads[body] = (st.index, [(s[0], s[1]) for s in student])
-    return res
+        diffs.append((student[i][2], ""))
+    return fb, diffs
 
 
 def _where(ref: Reference, loc: Vector) -> str:
-    for p in ref.system.points.values():
+    for p in list(ref.system.points.values()) + ref.contact_spots():
         if same_vector(ref, ref.kin.position(p), loc):
             return p.name
     return text(ref.kin.simplify_vector(loc)) if hasattr(ref.kin, "simplify_vector") else str(loc)
@@ -247,8 +266,6 @@ def _values_of(answer) -> list:
                 out += list(x.values())
             elif isinstance(x, list | tuple):
                 out += list(x)
-    for x in (getattr(answer, "details", {}) or {}).get("end_state", {}).values():
-        out.append(x)
     return [sp.sympify(x) for x in out if isinstance(x, sp.Basic | int | float)]
 
 
@@ -284,8 +301,12 @@ def grade_answer(ref: Reference, st: Step) -> StepResult:
             if cv is not None and math.isclose(float(claim), cv, rel_tol=rtol, abs_tol=rtol * 1e-3):
                 res.verdict = CORRECT
                 return res
-    shown = ", ".join(f"{text(c)}" + ("" if _num(c, params) is None else f" ≈ {_num(c, params):.6g}")
-                      for c in candidates[:3])
+    uniq = []
+    for c in candidates:
+        if not any(sp.simplify(c - u) == 0 for u in uniq):
+            uniq.append(c)
+    shown = ", ".join(f"{text(c)}" + ("" if _num(c, params) is None or sp.sympify(c).is_number
+                                      else f" ≈ {_num(c, params):.6g}") for c in uniq[:3])
     cv = _num(candidates[0], params) if candidates else None
     cl = _num(claim, params)
     if cv is not None and cl is not None:

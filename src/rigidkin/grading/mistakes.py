@@ -77,25 +77,26 @@ def moment_candidates(ref: Reference, body, points, axes) -> list[Candidate]:
         at_centre = kin.is_zero_vector(d)
         for axis, aname in axes:
             lab = f"Euler's 2nd law for {body.name} about {P.name}, along {aname}"
-            out.append(Candidate(lab, ref.moment_equation(body, P, axis), body.name, "moment", P.name))
+            right = ref.moment_equation(body, P, axis)
+            out.append(Candidate(lab, right, body.name, "moment", P.name))
             if body.is_massless:
                 continue
             if not at_centre:
                 out.append(Candidate(lab, ref.moment_equation(body, P, axis, inertial=False), body.name, "moment",
                                      P.name, f"inertial-moment term missing: moments about the moving point "
                                              f"{P.name} need −(r̄ − r_{P.name}) × m a_{P.name} (M_P = I_P·α holds "
-                                             "only when P is fixed or is the mass centre)"))
-                out.append(Candidate(lab, _bare(ref, body, P, axis), body.name, "moment", P.name,
-                                     f"wrong inertia: Ī (about the mass centre) was used for moments about "
-                                     f"{P.name}; the parallel-axis term m·d² is missing (I_{P.name} = Ī + m d²)"))
+                                             "only when P is fixed or is the mass centre)", right))
+                why = (f"wrong inertia: Ī (about the mass centre) was used for moments about {P.name}; the "
+                       f"parallel-axis term m·d² is missing (I_{P.name} = Ī + m d²)")
+                out.append(Candidate(lab, _bare(ref, body, P, axis), body.name, "moment", P.name, why, right))
             else:
-                for Q in ref.body_points(body):
+                for Q in ref.body_points(body) + ref.contact_spots(body):
                     if Q is G or kin.is_zero_vector(kin.position(Q) - kin.position(G)):
                         continue
+                    why = (f"wrong inertia: the moment of inertia about {Q.name} was used for moments about the mass "
+                           f"centre {G.name} (about {G.name} it is Ī, without m d²)")
                     out.append(Candidate(lab, ref.moment_equation(body, P, axis, inertia_about=Q), body.name,
-                                         "moment", P.name,
-                                         f"wrong inertia: the moment of inertia about {Q.name} was used for moments "
-                                         f"about the mass centre {G.name} (about {G.name} it is Ī, without m d²)"))
+                                         "moment", P.name, why, right))
     return out
 
 
@@ -114,8 +115,9 @@ def force_candidates(ref: Reference, body, directions, variants: bool = True) ->
     wrong = kinematic_variants(ref, body.centre, "a") if variants and not body.is_massless else []
     for e, name in directions:
         lab = f"Euler's 1st law for {body.name} along {name}"
-        out.append(Candidate(lab, ref.force_equation(body, e), body.name, "force"))
+        right = ref.force_equation(body, e)
+        out.append(Candidate(lab, right, body.name, "force"))
         for why, a in wrong:
             out.append(Candidate(lab, ref.force_equation(body, e, accel=a), body.name, "force", None,
-                                 f"wrong acceleration of the mass centre in m ā: {why}"))
+                                 f"wrong acceleration of the mass centre in m ā: {why}", right))
     return out

@@ -136,3 +136,22 @@ def vanishes(values: np.ndarray, scale: np.ndarray | None = None, rtol: float = 
         if np.max(np.abs(values[i])) > 1e3 * rtol * s:
             return False
     return True
+
+
+def free_dim(rows: list[np.ndarray], n_acc: int) -> int | None:
+    """How many independent reaction-free equations (equations of motion) the rows imply, at the first
+    usable sample: rank of the rows minus rank of their reaction columns."""
+    if not rows:
+        return 0
+    B = np.stack(rows, axis=1)
+    ok = _usable(B)
+    if not ok.any():
+        return None
+    M = B[np.nonzero(ok)[0][0]]
+    scale = np.linalg.norm(M, axis=1)
+    M = M[scale > 0] / scale[scale > 0, None]
+    if M.shape[0] == 0:
+        return 0
+    tol = 1e-9
+    return int(np.linalg.matrix_rank(M, tol=tol) - np.linalg.matrix_rank(M[:, n_acc:-1], tol=tol)
+               if M.shape[1] - 1 > n_acc else np.linalg.matrix_rank(M, tol=tol))

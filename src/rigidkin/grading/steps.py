@@ -158,7 +158,7 @@ def _candidates(ref: Reference, st: Step, variants: bool = True):
                                      hint=f"Points: {', '.join(ref.system.points)}.")
                 pts = [P]
             else:
-                pts = ref.body_points(b) + [ref.system.origin]
+                pts = ref.body_points(b) + ref.contact_spots(b) + [ref.system.origin]
             out += moment_candidates(ref, b, pts, axes) if variants else \
                 [c for c in moment_candidates(ref, b, pts, axes) if c.mistake is None]
     if "energy" in laws:
@@ -252,9 +252,9 @@ def _named_mistake(ref: Reference, st: Step, row, reg) -> str | None:
             continue
         if space.in_span(basis, v):
             continue                    # the "mistake" is harmless here (e.g. P fixed)
-        for j in range(len(basis)):
+        for j in _replaceable(ref, basis, c.correct, reg):
             trial = basis[:j] + basis[j + 1:] + [v]
-            if space.in_span(trial, row):
+            if ref.determinate_like(trial, reg) and space.in_span(trial, row):
                 return c.mistake
     return None
 
@@ -284,15 +284,16 @@ def _carried(ref: Reference, row, reg, carried: Carried) -> tuple[int, ...]:
             if nb > len(wrong):
                 continue
             for mset in itertools.combinations(mods, nm):
-                start = base if not mset else [ref.row(e, reg) for e in _modified_equations(ref, mset)]
-                for bset in itertools.combinations(wrong, nb):
+                starts = [base] if not mset else _determinate_subsets(
+                    ref, [ref.row(e, reg) for e in _modified_equations(ref, mset)], reg)
+                for start, bset in itertools.product(starts, itertools.combinations(wrong, nb)):
                     rows = [ref.row(e, reg) for _, e, _ in bset]
                     allowed = [_replaceable(ref, start, c, reg) for _, _, c in bset]
                     for drop in itertools.product(*allowed):
                         if len(set(drop)) < len(drop):
                             continue
                         trial = [r for j, r in enumerate(start) if j not in drop] + rows
-                        if _spans_all(trial, n_full):
+                        if _spans_all(trial, n_full) or not ref.determinate_like(trial, reg):
                             continue
                         try:
                             if space.in_span(trial, row):
@@ -300,6 +301,14 @@ def _carried(ref: Reference, row, reg, carried: Carried) -> tuple[int, ...]:
                         except space.NotLinear:
                             continue
     return ()
+
+
+def _determinate_subsets(ref: Reference, rows, reg) -> list:
+    """The student's equations as they stand, or — when a load left off the diagram makes them imply more
+    than the engine's (one equation too many) — each set with one equation left out."""
+    if ref.determinate_like(rows, reg):
+        return [rows]
+    return [rows[:j] + rows[j + 1:] for j in range(len(rows)) if ref.determinate_like(rows[:j] + rows[j + 1:], reg)]
 
 
 def _replaceable(ref: Reference, rows, counterpart, reg) -> list[int]:

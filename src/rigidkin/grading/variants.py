@@ -100,7 +100,7 @@ def make_set(problem: str, count: int, seed: int, vary: dict, rtol: float = DEFA
     if not 1 <= count <= MAX_COUNT:
         raise InputError(f"--count {count} is out of range (1 to {MAX_COUNT}).", where="--count")
     path = Path(problem)
-    if not path.suffix == ".toml":
+    if path.suffix != ".toml":
         if problem not in examples.names() or not (examples.HERE / f"{problem}.toml").exists():
             raise InputError(f"'{problem}' is neither a problem file nor a bundled example with a problem file.",
                              hint=f"Bundled examples: {', '.join(examples.names())}.")
