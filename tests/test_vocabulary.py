@@ -496,3 +496,13 @@ def test_rope_file_errors_name_the_field():
     bad = ATWOOD_FILE.replace('{ pulley = "pulley"', '{ pulley = "wheel"')
     with pytest.raises(RigidkinError, match="no body named 'wheel'"):
         parse_problem(bad, "atwood.toml")
+
+
+def test_an_undecided_comparison_is_said_so_not_called_a_disagreement():
+    """The "how decided" column and the verdict say the same thing (issue 15: a check that could evaluate
+    only 1 of 24 states read "disagrees")."""
+    from rigidkin.laws.crosscheck import Verdict, _status
+
+    how = "numeric: only 1 of 24 random states could be evaluated (undecided)"
+    assert _status(False, how) == "undecided" and _status(False, "numeric: 24 random states") == "disagrees"
+    assert Verdict("lagrange", "θ̈", "undecided", how).failed        # not "All agree" either

@@ -54,7 +54,7 @@ class Verdict:
 
     @property
     def failed(self) -> bool:
-        return self.status in ("disagrees", "error")
+        return self.status in ("disagrees", "error", "undecided")
 
 
 @dataclass(frozen=True)
@@ -394,7 +394,7 @@ def _compare_solutions(ref, other, law) -> list[Verdict]:
                 out.append(Verdict(law, label, "error", "the law does not give this acceleration"))
                 continue
             ok, how = compare(a, b)
-            out.append(Verdict(law, label, "agrees" if ok else "disagrees", how, a, b))
+            out.append(Verdict(law, label, _status(ok, how), how, a, b))
         if len(ref.coordinates) == 1 and o.eom and r.eom:
             ok, how = same_equation(o.eom[0], r.eom[0])
             if ok:
@@ -428,6 +428,11 @@ def _compare_numerically(ref, r, o, law, tag) -> list[Verdict]:
         out.append(Verdict(law, f"{text(q.diff(t, 2))}{tag}", "agrees" if ok else "disagrees", how,
                            None if ok else _row(o, k), None if ok else _row(r, k)))
     return out
+
+
+def _status(ok: bool, how: str) -> str:
+    """The verdict a comparison supports: an undecided numeric comparison is not a disagreement."""
+    return "agrees" if ok else ("undecided" if "undecided" in how else "disagrees")
 
 
 def _row(regime, k):
