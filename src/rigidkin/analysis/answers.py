@@ -163,8 +163,7 @@ def _event(system, question, f, context):
     sol = _solution(system, f)
     ev = event(sol, f["when"], _start(f, context), name=question.name, mode=f.get("mode"))
     if not ev.happens:
-        return Answer(question, None, f"does not happen: {'; '.join(ev.notes)}", note="; ".join(ev.notes),
-                      details={"happens": False})
+        return Answer(question, None, f"does not happen: {'; '.join(ev.notes)}", details={"happens": False})
     q = ev.coordinate
     parts = [f"{text(k)} = {text(v)}{_reading(v, system, _kind_of(system, k))}"
              for k, v in ev.configuration.items()]
@@ -197,7 +196,7 @@ def _threshold(system, question, f, context):
     sol = _solution(system, f)
     over = f.get("over")
     res = threshold(sol, f["holds"], _start(f, context), over=tuple(over) if over else None)
-    (q,) = sol.coordinates
+    q = sol.coordinates[0]
     out = f"the smallest start rate: {text(q.diff(t))}² = {text(res['rate_squared'])}"
     value = res["rate_squared"]
     expr = f.get("expression")
@@ -205,7 +204,9 @@ def _threshold(system, question, f, context):
         value = algebra.readable(sp.sympify(expr).xreplace({q.diff(t): res["rate"]}))
         out += f"; {text(expr)} = {text(value)}"
     out += f" (tightest at {text(q)} = {text(res['critical'])})"
-    return Answer(question, value, out, details=res)
+    return Answer(question, value, out, details=res, exact=res.get("exact", True), tolerance=res.get("tolerance"),
+                  note="" if res.get("exact", True) else "no closed form in time: found numerically (relative "
+                                                               "tolerance 1e-12)")
 
 
 def _equilibrium(system, question, f, context):

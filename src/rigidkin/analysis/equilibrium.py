@@ -19,7 +19,7 @@ from sympy.physics.vector import dynamicsymbols
 from .. import algebra
 from ..errors import RigidkinError
 from ..printing import text
-from .events import _num, numeric_values
+from .events import SOLVE_SECONDS, _num, numeric_values
 from .integrals import single_regime
 
 t = dynamicsymbols._t
@@ -66,8 +66,9 @@ def equilibria(solution, limit: int = 8) -> list[Equilibrium]:
     if not eqs:
         raise RigidkinError("every configuration is an equilibrium (no generalised force acts).")
     try:
-        sols = sp.solve(eqs, [plain[q] for q in qs], dict=True)
-    except NotImplementedError:
+        with algebra.time_limit(SOLVE_SECONDS):
+            sols = sp.solve(eqs, [plain[q] for q in qs], dict=True)
+    except (NotImplementedError, TimeoutError):
         sols = []
     if not sols:
         raise RigidkinError("sympy finds no closed-form equilibrium configuration.",
@@ -131,9 +132,11 @@ def linearise(solution, at: dict) -> Equilibrium:
     elif n <= 3:
         w2 = sp.Symbol("_w2")
         try:
-            roots = sp.solve((Kmat - w2 * Mmat).det(), w2)
-        except NotImplementedError:
+            with algebra.time_limit(SOLVE_SECONDS):
+                roots = sp.solve((Kmat - w2 * Mmat).det(), w2)
+        except (NotImplementedError, TimeoutError):
             roots = []
+            notes.append("no closed-form natural frequencies in time: see the eigenvalues (numeric)")
         for r in roots:
             if _num(r, values) > 0:
                 freqs.append(algebra.readable(sp.sqrt(r)))

@@ -12,6 +12,7 @@ is stated.
 
 from __future__ import annotations
 
+import contextlib
 import math
 from dataclasses import dataclass, field
 
@@ -361,15 +362,21 @@ def _event_1dof(solution, integral, when, name) -> Event:
         h = along_motion(solution, cond.expr, integral)
         hp, hs = _plain(h, q)
         hf = sp.lambdify(hs, hp.xreplace({k: sp.Float(v) for k, v in values.items()}), "math")
+        prev = None
         for x in np.linspace(q0n, vnum, 400)[1:-1]:
             try:
                 hv = float(hf(x))
             except (ValueError, TypeError, ZeroDivisionError):
                 continue
             if hv < -1e-9 * max(1.0, abs(hv)):
-                notes.append(f"{cond.label} fails first, near {text(q)} ≈ {x:.6g}: the event is not reached "
-                             "in this mode")
+                where = x
+                if prev is not None:           # the crossing itself, not the grid point after it
+                    with contextlib.suppress(ValueError, TypeError, ZeroDivisionError):
+                        where = brentq(lambda s, hf=hf: float(hf(s)), prev, x, xtol=1e-13)
+                notes.append(f"{cond.label} fails first, at {text(q)} ≈ {where:.6g} (where it reaches its "
+                             "limit): the event is not reached in this mode")
                 return Event(name, g, False, q, notes=tuple(notes))
+            prev = x
     rate = sp.sqrt(integral.rate_squared.xreplace({q: value}))
     rate = algebra.readable(direction * rate)
     config = {q: value}
@@ -417,8 +424,27 @@ def threshold(solution, holds: sp.Rel, start: dict | None = None, over: tuple | 
     inside = [p for p in pts if an - 1e-12 <= _num(p, values) <= bn + 1e-12]
     worst = min(inside, key=lambda p: _num(hp.xreplace({qs: p}), values))
     h_at = algebra.readable(hp.xreplace({qs: worst}))
-    sols = [s for s in sp.solve(h_at, u0) if _num(s, values) > 0]
+    try:
+        with algebra.time_limit(SOLVE_SECONDS):
+            sols = [s for s in sp.solve(h_at, u0) if _num(s, values) > 0]
+    except (NotImplementedError, TimeoutError):
+        return _threshold_numeric(h_at, u0, values, worst)
     if not sols:
         raise RigidkinError("no start rate makes the condition hold at its tightest point.")
     rate = algebra.readable(sp.sqrt(algebra.readable(sols[0] ** 2)))
-    return {"rate": rate, "rate_squared": algebra.readable(rate**2), "critical": worst}
+    return {"rate": rate, "rate_squared": algebra.readable(rate**2), "critical": worst, "exact": True,
+            "tolerance": None}
+
+
+def _threshold_numeric(h_at, u0, values, worst) -> dict:
+    """The threshold start rate as a number (bracketed root of the condition at its tightest point)."""
+    f = sp.lambdify(u0, h_at.xreplace({k: sp.Float(v) for k, v in values.items() if k != u0}), "math")
+    xs = np.geomspace(1e-6, 1e4, 400)
+    vals = [float(f(x)) for x in xs]
+    for a, b, fa, fb in zip(xs, xs[1:], vals, vals[1:]):
+        if fa * fb <= 0:
+            root = brentq(f, a, b, xtol=1e-13, rtol=1e-12)
+            rate = sp.Float(root)
+            return {"rate": rate, "rate_squared": rate**2, "critical": worst, "exact": False, "tolerance": 1e-12}
+    raise RigidkinError("no start rate makes the condition hold at its tightest point (searched numerically "
+                        "up to 1e4).")

@@ -25,6 +25,24 @@ from .states import at_state, full_state
 t = dynamicsymbols._t
 
 
+#: sympy's simplify gets this many seconds, and only expressions up to this many operations.
+SIMPLIFY_SECONDS = 4.0
+SIMPLIFY_OPS = 600
+
+
+def bounded_simplify(expr) -> sp.Expr:
+    """``simplify`` within a time and size budget (its randomised factoring can run for minutes), then
+    the bounded simplification for reading; the expression as it is when the budget runs out."""
+    e = sp.sympify(expr)
+    if sp.count_ops(e) <= SIMPLIFY_OPS:
+        try:
+            with algebra.time_limit(SIMPLIFY_SECONDS):
+                e = sp.simplify(e)
+        except TimeoutError:
+            e = sp.sympify(expr)
+    return algebra.readable(e)
+
+
 @dataclass(frozen=True)
 class EnergyIntegral:
     """q̇² = ``rate_squared`` (a function of q) along the motion that starts at (q0, q̇0)."""
@@ -42,8 +60,9 @@ class EnergyIntegral:
 
 def single_regime(solution):
     if len(solution.regimes) != 1:
-        raise RigidkinError(f"this needs a single regime, but the solution has {len(solution.regimes)}.",
-                            hint="Fix the friction direction (choose a regime) first.")
+        raise RigidkinError(f"this needs one regime, and the solution has {len(solution.regimes)} (one per sense of "
+                            "sliding, where friction slides).",
+                            hint="Ask with the sliding contact's mode set to 'stick' (or 'open').")
     return solution.regimes[0]
 
 
@@ -54,8 +73,14 @@ def start_values(solution, start: dict | None) -> tuple:
     info = solution.system.coordinate_of(q)
     q0 = start.get(q, info.initial if info.initial is not None else 0)
     u0 = start.get(q.diff(t), info.rate if info.rate is not None else 0)
-    return sp.nsimplify(q0) if isinstance(q0, float) else sp.sympify(q0), \
-        sp.nsimplify(u0) if isinstance(u0, float) else sp.sympify(u0)
+    return exact_number(q0), exact_number(u0)
+
+
+def exact_number(v):
+    """A start value as an exact number: 0.3 → 3/10 (so that answers stay exact), else as given."""
+    if isinstance(v, float | sp.Float):
+        return sp.nsimplify(v, rational=True)
+    return sp.sympify(v)
 
 
 def energy_integral(solution, start: dict | None = None) -> EnergyIntegral:
@@ -66,7 +91,7 @@ def energy_integral(solution, start: dict | None = None) -> EnergyIntegral:
     regime = single_regime(solution)
     (q,) = solution.coordinates
     u = q.diff(t)
-    M = sp.simplify(regime.mass_matrix[0, 0])
+    M = bounded_simplify(regime.mass_matrix[0, 0])
     f = regime.forcing[0]
     Q = f.xreplace({u: 0})
     gyro = sp.expand(f - Q)
@@ -103,7 +128,7 @@ def along_motion(solution, expr, integral: EnergyIntegral) -> sp.Expr:
             raise RigidkinError("the expression depends on the sign of the rate, not only on its square.",
                                 hint="Give the direction of motion.")
         e = e.xreplace({us: sp.sqrt(integral.rate_squared)})
-    return algebra.readable(sp.simplify(e))
+    return bounded_simplify(e)
 
 
 @dataclass(frozen=True)

@@ -19,9 +19,14 @@ def full_state(system, start: dict) -> dict:
         q, u = c.symbol, c.symbol.diff(t)
         q0 = start.get(q, c.initial if c.initial is not None else 0)
         u0 = start.get(u, c.rate if c.rate is not None else 0)
-        out[q] = sp.nsimplify(q0) if isinstance(q0, float) else sp.sympify(q0)
-        out[u] = sp.nsimplify(u0) if isinstance(u0, float) else sp.sympify(u0)
+        out[q] = _exact(q0)
+        out[u] = _exact(u0)
     return out
+
+
+def _exact(v):
+    """0.3 → 3/10 (answers stay exact); anything else as given."""
+    return sp.nsimplify(v, rational=True) if isinstance(v, float | sp.Float) else sp.sympify(v)
 
 
 def at_state(expr, state: dict):
