@@ -506,3 +506,16 @@ def test_an_undecided_comparison_is_said_so_not_called_a_disagreement():
     how = "numeric: only 1 of 24 random states could be evaluated (undecided)"
     assert _status(False, how) == "undecided" and _status(False, "numeric: 24 random states") == "disagrees"
     assert Verdict("lagrange", "θ̈", "undecided", how).failed        # not "All agree" either
+
+
+def test_reports_list_the_definitions():
+    from rigidkin.io.results import solution_data
+    from rigidkin.report.document import inputs_tables
+
+    system, _ = parse_problem(CHORD, "chord.toml")
+    tables = {tb.caption: tb for tb in inputs_tables(system)}
+    rows = tables["Derived quantities"].rows
+    assert len(rows) == 1 and rows[0][1] == "distance of the chord from the centre" and rows[0][2] == "m"
+    data = solution_data(system.solve())
+    assert data["definitions"]["a"]["expression"] == "sqrt(R**2 - l**2)"
+    assert data["definitions"]["a"]["value"] == pytest.approx(0.8)

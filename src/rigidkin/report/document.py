@@ -135,9 +135,14 @@ def inputs_tables(system, solution=None) -> list[Table]:
         rate_unit = f"{unit}/s" if unit else "1/s"
         crows.append((Math(c.symbol), c.sense or c.description or "", c.kind, unit or "—", role,
                       _value(c.initial, unit), _value(c.rate, rate_unit)))
-    return [Table(("Parameter", "Meaning", "Unit", "Value"), tuple(prows), "Parameters"),
-            Table(("Coordinate", "Sense", "Kind", "Unit", "Role", "Initial value", "Initial rate"), tuple(crows),
-                  "Generalised coordinates")]
+    tables = [Table(("Parameter", "Meaning", "Unit", "Value"), tuple(prows), "Parameters")]
+    definitions = getattr(system, "definitions", {})
+    if definitions:              # derived quantities (System.define): each with its definition
+        drows = tuple((Math(sp.Eq(d.quantity.symbol, d.expression, evaluate=False)), d.description or "",
+                       d.unit or "—", _value(d.value)) for d in definitions.values())
+        tables.append(Table(("Definition", "Meaning", "Unit", "Value"), drows, "Derived quantities"))
+    return tables + [Table(("Coordinate", "Sense", "Kind", "Unit", "Role", "Initial value", "Initial rate"),
+                           tuple(crows), "Generalised coordinates")]
 
 
 def _step(s) -> Step:
