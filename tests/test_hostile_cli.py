@@ -330,3 +330,32 @@ def test_timeout_bounds_the_whole_command(tmp_path):
     assert res.returncode == 4, res.stderr
     assert "time limit reached" in res.stderr and "--timeout 2" in res.stderr and "Traceback" not in res.stderr
     assert seconds < 2 + 2, seconds
+
+
+LAYER = textwrap.dedent("""
+    import sys, time
+    from rigidkin.commands.deadline import deadline
+    sys.stderr.write(f"@@start {time.monotonic()!r}\\n")
+    sys.stderr.flush()
+    with deadline(1, hard_stop=True):
+        if sys.argv[1] == "swallow":        # a library that catches everything, even the time limit
+            while True:
+                try:
+                    time.sleep(5)
+                except BaseException:
+                    pass
+        else:                               # one long call of compiled code that never lets other threads run
+            sum(range(10**12))
+""")
+
+
+@pytest.mark.parametrize("how, status, words, bound", [
+    ("swallow", 4, "time limit reached", 1 + 1 + 1.5),     # the watchdog thread, a second after the limit
+    ("compiled", -9, "(killed)", 1 + 3 + 1.5),             # the watchdog process, three seconds after it
+])
+def test_the_hard_stops_of_the_time_limit(how, status, words, bound):
+    res = subprocess.run([sys.executable, "-c", LAYER, how], capture_output=True, text=True, timeout=60)
+    seconds = time.monotonic() - float(res.stderr.split("@@start ", 1)[1].split()[0])
+    assert res.returncode == status, res.stderr
+    assert words in res.stderr and "Traceback" not in res.stderr
+    assert seconds < bound, seconds

@@ -51,9 +51,9 @@ def _pairs(items, what: str) -> dict:
 
 
 def _numbers(pairs: dict, what: str) -> dict:
-    from ..units import to_si
+    from .common import value
 
-    return {k: to_si(v, None, f"{what} {k}") for k, v in pairs.items()}
+    return {k: value(v, f"{what} {k}") for k, v in pairs.items()}
 
 
 def run(args) -> int:
