@@ -50,7 +50,10 @@ def say(text: str) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run a command; ``argv`` None reads the program's arguments and arms the hard stop of ``--timeout``."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:            # a refused option (status 2, said on stderr) or --help (0)
+        return exc.code if isinstance(exc.code, int) else EXIT_INPUT
     try:
         with deadline(getattr(args, "timeout", None), hard_stop=argv is None), _safe_warnings():
             return int(args.func(args) or EXIT_OK)
