@@ -112,7 +112,8 @@ def _bare(ref: Reference, body, P, axis):
 def force_candidates(ref: Reference, body, directions, variants: bool = True) -> list[Candidate]:
     """Euler's 1st law along each direction, and the same with the mass centre's acceleration mistaken."""
     out = []
-    wrong = kinematic_variants(ref, body.centre, "a") if variants and not body.is_massless else []
+    wrong = [("the inertia term m ā is missing (written as if in equilibrium; the mass centre accelerates)",
+              Vector(0))] + kinematic_variants(ref, body.centre, "a") if variants and not body.is_massless else []
     for e, name in directions:
         lab = f"Euler's 1st law for {body.name} along {name}"
         right = ref.force_equation(body, e)
