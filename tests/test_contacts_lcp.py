@@ -333,3 +333,43 @@ def test_block_sliding_up_a_rough_incline_comes_to_rest_and_sticks():
     after = res.segment == 1
     assert res.segments[1].mode == {"ground": "stick"}
     assert np.all(res["dot(x)"][after] == 0.0) and np.ptp(res["x"][after]) == 0.0
+
+
+# a box pushed at height d: it slides or tips first, as the closed form says ---------------------------
+def pushed_box(mu_s, mu_k, b=0.5, h=1.0, d=0.4, c=2.0, m=1.0):
+    s = rk.System("pushed-box")
+    m_ = s.parameter("m", "kg", value=m)
+    g = s.parameter("g", "m/s^2", value=G)
+    b_, h_, d_ = s.parameter("b", "m", value=b), s.parameter("h", "m", value=h), s.parameter("d", "m", value=d)
+    c_ = s.parameter("c", "N/s", value=c)
+    ms, mk = s.parameter("mu_s", "", value=mu_s), s.parameter("mu_k", "", value=mu_k)
+    x = s.coordinate("x", "centre along Ex", kind="length", initial=0, rate=0)
+    y = s.coordinate("y", "centre height", kind="length", initial=h / 2, rate=0)
+    th = s.coordinate("theta", "tilt, counter-clockwise", initial=0, rate=0)
+    B = s.frame("B", angle=th)
+    Gp = s.point("G", s.origin, x * s.inertial.x + y * s.inertial.y)
+    box = s.body("box", rk.shapes.RectangularPlate(m_, b_, h_), frame=B, at=Gp)
+    back = s.point("A", Gp, -b_ / 2 * B.x - h_ / 2 * B.y, body=box)
+    front = s.point("C", Gp, b_ / 2 * B.x - h_ / 2 * B.y, body=box)
+    push = s.point("P", Gp, -b_ / 2 * B.x + (d_ - h_ / 2) * B.y, body=box)
+    floor = s.line(s.origin, s.inertial.y)
+    fr = {"static": ms, "kinetic": mk}
+    s.contact("A", box, floor, centre=back, friction=fr, normal_name="N_A", friction_name="F_A")
+    s.contact("C", box, floor, centre=front, friction=fr, normal_name="N_C", friction_name="F_C")
+    s.force("push", push, c_ * rk.t * s.inertial.x)
+    s.gravity(g)
+    return s
+
+
+@pytest.mark.parametrize("mu_s", [0.3, pytest.param(0.8, marks=pytest.mark.slow)])
+def test_box_pushed_at_height_slides_or_tips_first(mu_s):
+    b, h, d, c, m = 0.5, 1.0, 0.4, 2.0, 1.0
+    t_slide, t_tip = mu_s * m * G / c, m * G * b / (2 * c * d)  # P = µs m g, or P d = m g b / 2
+    res = simulate(pushed_box(mu_s, 0.8 * mu_s, b, h, d, c, m), min(t_slide, t_tip) + 0.02, max_events=5)
+    ev = res.events[0]
+    assert res.segments[0].mode == {"A": "stick", "C": "slip"}      # at rest; C's friction carried with A's
+    if mu_s < b / (2 * d):
+        assert ev.kind == "slips" and ev.t == pytest.approx(t_slide, abs=1e-9)
+    else:
+        assert ev.kind == "opens" and ev.contact == "A" and ev.t == pytest.approx(t_tip, abs=1e-9)
+        assert res.segments[1].mode == {"A": "open", "C": "stick"}

@@ -281,10 +281,13 @@ class Hybrid:
                 mu, N = c.friction.static, R(c.N)       # sticking holds while |F| ≤ µs N
                 if kin.planar:
                     F = R(c.F)
+                    # contacts held by this one carry their friction with it: their limits add up
+                    spare = sum((self.contacts[h].friction.static * R(self.contacts[h].N)
+                                 for h in getattr(setup, "held", ())), sp.Integer(0))
                     watch(Watch("slips", name, f"contact {name} starts to slip", -1, -1, f"µ{c.N} − {c.F}"),
-                          mu * N - F)
+                          mu * N + spare - F)
                     watch(Watch("slips", name, f"contact {name} starts to slip", -1, +1, f"µ{c.N} + {c.F}"),
-                          mu * N + F)
+                          mu * N + spare + F)
                 else:
                     Fs = [R(r) for r in setup.reactions if str(r).startswith(str(c.F))]
                     watch(Watch("slips", name, f"contact {name} starts to slip", -1, quantity="friction cone"),

@@ -457,6 +457,8 @@ def _transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
                                   "dimensions is not simulated yet.", where=hyb.system.name)
         cand = {**mode, w.name: SLIP}
         forced = {**_current_signs(hyb, model, t_, y, p), w.name: w.slip_sign}
+        for h in getattr(model.solution.setup, "held", ()):     # held with it: the group slips together
+            cand[h], forced[h] = SLIP, w.slip_sign
         new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
         detail = (f"the friction needed at {w.name} reaches µN; it slips with slip speed "
                   f"{'positive' if w.slip_sign > 0 else 'negative'}")
