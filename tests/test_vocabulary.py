@@ -519,3 +519,18 @@ def test_reports_list_the_definitions():
     data = solution_data(system.solve())
     assert data["definitions"]["a"]["expression"] == "sqrt(R**2 - l**2)"
     assert data["definitions"]["a"]["value"] == pytest.approx(0.8)
+
+
+def test_belt_friction_on_a_pulley_capstan():
+    """With µ on the pulley the rope grips while T1 ≤ T2 e^{µπ} and T2 ≤ T1 e^{µπ} (wrap angle π): with
+    T1 = m1 g (M + 4 m2)/(M + 2m1 + 2m2) and T2 = m2 g (M + 4 m1)/(…)."""
+    text = ATWOOD_FILE.replace('sense = "cw" }', 'sense = "cw", mu = "mu" }').replace(
+        '[coordinates]', 'mu = { unit = "", value = 0.3 }\n[coordinates]')
+    system, _ = parse_problem(text, "atwood.toml")
+    sol = system.solve()
+    m1, m2, M, g, mu = (system.parameters[n] for n in ("m1", "m2", "M", "g", "mu"))
+    T1 = g * m1 * (M + 4 * m2) / (M + 2 * m1 + 2 * m2)
+    T2 = g * m2 * (M + 4 * m1) / (M + 2 * m1 + 2 * m2)
+    grips = [c.expr for c in sol.validity if "grips" in c.label]
+    wanted = [T1 * sp.exp(mu * sp.pi) - T2, T2 * sp.exp(mu * sp.pi) - T1]
+    assert len(grips) == 2 and all(any(sp.simplify(gx - w) == 0 for gx in grips) for w in wanted)

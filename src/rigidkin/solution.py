@@ -482,4 +482,8 @@ def _conditions(setup, choices, sign_map, react):
     from .model.profiles import arc_margins  # a profile that is an arc: the contact point stays on it
 
     valid.extend(Condition(m, ">=", label, "validity") for m, label in arc_margins(setup))
+    for c in setup.system.constraints.values():          # a constraint's own conditions (a rope's grip)
+        extra = getattr(c, "validity", None)
+        if callable(extra) and setup.states.get(c.name) != "open":
+            valid.extend(Condition(m, ">=", label, "validity") for m, label in extra(setup, react))
     return conds, valid

@@ -595,9 +595,10 @@ class _Builder:
             for i, st in enumerate(c.path):
                 here = path + ("path", i)
                 if isinstance(st, S.WrapSpec):
+                    mu = None if st.mu is None else self.scalar(st.mu, here + ("mu",))
                     stations.append(Wrap(self.body(st.pulley, here + ("pulley",)),
                                          self.scalar(st.radius, here + ("radius",)), st.sense,
-                                         self.point(st.centre, here + ("centre",), True)))
+                                         self.point(st.centre, here + ("centre",), True), mu))
                 else:
                     stations.append(self.point(st, here))
             self.call(path, self.s.rope, name, stations, c.tensions, c.description)

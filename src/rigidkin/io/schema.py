@@ -242,6 +242,7 @@ class WrapSpec(Strict):
     radius: Expr
     sense: Literal["cw", "ccw"] = "cw"
     centre: Name | None = None
+    mu: Expr | None = None              # belt friction: the rope grips while T_tight ≤ T_slack e^(µφ)
 
 
 class RopeSpec(Strict):

@@ -46,6 +46,7 @@ class Wrap:
     radius: sp.Expr
     sense: str = "cw"
     centre: Point | None = None
+    mu: sp.Expr | None = None      # belt friction on it: no slip while T_tight ≤ T_slack e^{µ φ}
 
     @property
     def sign(self) -> int:
@@ -58,6 +59,8 @@ class _Station:
     body: object          # the body whose material point the rope moves with there (None: the ground)
     signed_radius: sp.Expr
     label: str
+    mu: sp.Expr | None = None
+    sign: int = 0         # +1: the rope goes round counter-clockwise, −1 clockwise (0: an end)
 
 
 @dataclass(eq=False)
@@ -118,6 +121,28 @@ class Rope(Constraint):
                            velocity, T, tuple(apps), unilateral=True, kind="tension"))
         return out
 
+    def validity(self, setup, react) -> list[tuple[sp.Expr, str]]:
+        """Belt friction (capstan): on a pulley with ``mu`` the rope grips while each side's tension is at
+        most e^{µφ} times the other's, φ the wrap angle (the turn from the incoming segment's direction to
+        the outgoing one's, in the wrap's sense, in (0, 2π]).  (expression ≥ 0, label) pairs."""
+        kin, out = setup.kin, []
+        ez = kin.F.z
+        for k in range(1, len(self.stations) - 1):
+            st = self.stations[k]
+            if st.mu is None:
+                continue
+            e_in, e_out = self.segment(kin, k - 1)[0], self.segment(kin, k)[0]
+            y = kin.simplify_expr(st.sign * e_in.cross(e_out).dot(ez))
+            x = kin.simplify_expr(e_in.dot(e_out))
+            phi = sp.pi + sp.atan2(-y, -x)
+            grip = sp.exp(st.mu * phi)
+            t_in = react.get(self.tension_names[k - 1], self.tensions[k - 1])
+            t_out = react.get(self.tension_names[k], self.tensions[k])
+            label = f"rope {self.name} grips {st.label} (|T| ratio ≤ e^(µφ), φ = {phi})"
+            out.append((kin.simplify_expr(setup.scalar(t_in * grip - t_out)), label))
+            out.append((kin.simplify_expr(setup.scalar(t_out * grip - t_in)), label))
+        return out
+
     @staticmethod
     def _velocity(kin, station, location):
         if station.signed_radius == 0:
@@ -165,7 +190,8 @@ def build_rope(system, name: str, path, tensions=None, description: str = "") ->
             r = sp.sympify(item.radius)
             if r.is_positive is False or r == 0:
                 raise ModelError(f"the radius of the pulley {body.name} must be positive.", where=where)
-            stations.append(_Station(centre, body, item.sign * r, body.name))
+            mu = None if item.mu is None else sp.sympify(item.mu)
+            stations.append(_Station(centre, body, item.sign * r, body.name, mu, item.sign))
             continue
         if not end:
             raise ModelError(f"station {k + 1} of the rope is a point; between the ends a rope runs over pulleys "
