@@ -208,6 +208,8 @@ CASES = [
     ("plot-missing-folder", [*SIM, "--plot", "{d}/missing/x.png"], 2, "does not exist"),
     ("plot-unknown-extension", [*SIM, "--plot", "{d}/x.figure"], 2, "extension '.figure'"),
     ("plot-folder", [*SIM, "--plot", "{d}/a-folder"], 2, "it is a folder"),
+    ("csv-name-too-long", [*SIM, "--csv", "{d}/" + "x" * 300 + ".csv"], 2, "too long"),
+    ("csv-nul-in-name", [*SIM, "--csv", "{d}/a\x00b.csv"], 2, "not a usable file name"),
     ("sweep-output-folder", [*SWEEP[:-1], "{d}/a-folder", "--param", "theta=0:1:3"], 2, "it is a folder"),
     ("sweep-plot-extension", [*SWEEP, "--param", "theta=0:1:3", "--plot", "{d}/x.doc"], 2, "extension '.doc'"),
     ("report-missing-folder", ["report", P, "-o", "{d}/missing/r.html"], 2, "does not exist"),

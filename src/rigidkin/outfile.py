@@ -27,6 +27,13 @@ def check_target(path, what: str, suffixes: tuple[str, ...] | None = None) -> Pa
     if not text or "\x00" in text:
         raise OutputError(f"'{path}' is not a usable file name for {what}.", where="output")
     p = Path(text)
+    try:
+        return _check(p, what, suffixes)
+    except OSError as exc:               # a name too long, a loop of links, ...
+        raise _error(exc, what, p) from None
+
+
+def _check(p: Path, what: str, suffixes: tuple[str, ...] | None) -> Path:
     if p.is_dir():
         raise OutputError(f"cannot write {what} to {p}: it is a folder.",
                           hint="Give a file name inside it, e.g. " + str(p / ("out" + (suffixes or ("",))[0])) + ".")

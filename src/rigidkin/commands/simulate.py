@@ -138,6 +138,7 @@ def run(args) -> int:
     from ..outfile import check_target
     from ..textsafe import terminal_safe
     from .common import guarded, json_safe, load_system
+    from .deadline import set_step
     from .options import EXIT_STOPPED
 
     if args.csv:
@@ -154,6 +155,7 @@ def run(args) -> int:
     system, _ = guarded(args, load_system, args.problem)
     check_points(system, args.points)
     progress = _Progress(sys.stderr.isatty() and not args.json)
+    set_step(f"Simulating to t = {args.t_end:g} s")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", RuntimeWarning)
         try:
@@ -166,6 +168,7 @@ def run(args) -> int:
         finally:
             progress.close()
     del caught
+    set_step("Writing the histories and the figure")
     if args.csv:
         result.write_csv(args.csv)
     if args.plot:

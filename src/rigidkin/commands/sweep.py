@@ -86,13 +86,15 @@ def run(args) -> int:
     from ..outfile import check_target
     from ..textsafe import terminal_safe
     from .common import guarded, load_system
+    from .deadline import set_step
 
     check_target(args.output, "the sweep table")
     if args.plot:
         check_target(args.plot, "the figure", figure_formats())
     vary = {name: parse_axis(v, f"--param {name}") for name, v in _pairs(args.param, "--param").items()}
     system, _ = guarded(args, load_system, args.problem)
-    check_size(system, vary, events=len(args.stop_at) + len(args.record) + 2 * len(system.constraints) + 2)
+    runs = check_size(system, vary, events=len(args.stop_at) + len(args.record) + 2 * len(system.constraints) + 2)
+    set_step(f"Sweeping {runs:,} runs")
     scheduler = args.scheduler or ("local" if args.workers else None)
     progress = _Progress(sys.stderr.isatty())
     start = time.perf_counter()
@@ -105,6 +107,7 @@ def run(args) -> int:
     finally:
         progress.close()
     elapsed = time.perf_counter() - start
+    set_step("Writing the table")
     res.to_csv(args.output)
     say = _safe_print(terminal_safe)
     counts = {}
