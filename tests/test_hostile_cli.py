@@ -173,7 +173,7 @@ CASES = [
     ("atol-inf", [*SIM, "--atol", "inf"], 2, "--atol"),
     ("atol-text", [*SIM, "--atol", "small"], 2, "not a number"),
     ("t-end-negative", ["simulate", P, "--t-end", "-1"], 2, "--t-end"),
-    ("t-end-zero", ["simulate", P, "--t-end", "0"], 2, "must be positive"),
+    ("t-end-zero", ["simulate", P, "--t-end", "0"], 2, "not a positive end time"),
     ("t-end-nan", ["simulate", P, "--t-end", "nan"], 2, "not a finite number"),
     ("t-end-inf", ["simulate", P, "--t-end", "inf"], 2, "not a finite number"),
     ("t-end-huge", ["simulate", P, "--t-end", "1e300"], 2, "at most"),

@@ -40,8 +40,8 @@ class Parser(argparse.ArgumentParser):
     def error(self, message: str):
         from ..textsafe import terminal_safe
 
-        text = terminal_safe(f"{self.prog}: {message}".rstrip("."), newlines=False)
-        sys.stderr.write(f"{text}. See '{terminal_safe(self.prog, newlines=False)} --help'.\n")
+        text = terminal_safe(message.removeprefix("argument ").rstrip("."), newlines=False)
+        sys.stderr.write(f"rigidkin: {text}. See '{terminal_safe(self.prog, newlines=False)} --help'.\n")
         sys.exit(EXIT_INPUT)
 
 
@@ -76,7 +76,7 @@ def end_time(text: str) -> float:
     """An end time in seconds: finite, positive and at most MAX_TIME."""
     v = _real(text, "give the end time in seconds, e.g. 5")
     if not 0 < v <= MAX_TIME:
-        raise argparse.ArgumentTypeError(f"the time {v:g} s must be positive and at most {MAX_TIME:g} s")
+        raise argparse.ArgumentTypeError(f"{v:g} s is not a positive end time of at most {MAX_TIME:g} s")
     return v
 
 
