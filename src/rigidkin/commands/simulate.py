@@ -125,7 +125,7 @@ def check_points(system, points: int) -> None:
     from ..limits import check_memory, history_bytes
 
     n, n_c = len(system.coordinate_info), len(system.constraints)
-    columns = 2 * n + 1 + 4 * n_c + 6          # t, state, work; reactions and friction limits; T, U, E, mode
+    columns = 2 * n + 1 + 8 * n_c + 6          # t, state, work; reactions (6 at a 3D joint), friction limits; T, U, E
     check_memory(history_bytes(points, columns), f"{points:,} samples of {columns} histories", "--points",
                  hint="Ask for fewer samples (the default 1001 draws a smooth figure; events are exact whatever the "
                       "sampling).")
