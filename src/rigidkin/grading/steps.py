@@ -68,7 +68,8 @@ class Carried:
     accel: dict = field(default_factory=dict)      # body → (step, vector a_G)
     alpha: dict = field(default_factory=dict)      # body → (step, vector α)
     loads: dict = field(default_factory=dict)      # body → (step, [(vector, location | None)])
-    balances: list = field(default_factory=list)   # (step, expr = 0)
+    balances: list = field(default_factory=list)   # (step, expr = 0, the engine's nearest equation)
+    cache: dict = field(default_factory=dict)      # the student's modified equations, per set of steps
 
 
 def grade_file(path) -> GradeReport:
@@ -131,7 +132,14 @@ def parse_claim(ref: Reference, st: Step):
 
 
 def _candidates(ref: Reference, st: Step, variants: bool = True):
-    """The engine's equations for the law the step names (all laws when it names none)."""
+    """The engine's equations for the law the step names (all laws when it names none), cached."""
+    key = ("candidates", st.law, st.body, st.point, st.direction, variants)
+    if key not in ref._rows:
+        ref._rows[key] = _make_candidates(ref, st, variants)
+    return ref._rows[key]
+
+
+def _make_candidates(ref: Reference, st: Step, variants: bool):
     bodies = [ref.body(st.body)] if st.body else list(ref.system.bodies.values())
     if None in bodies:
         raise InputError(f"the problem has no body named '{st.body}'.", where=st.where,
@@ -159,8 +167,9 @@ def _candidates(ref: Reference, st: Step, variants: bool = True):
                 pts = [P]
             else:
                 pts = ref.body_points(b) + ref.contact_spots(b) + [ref.system.origin]
+            every = _candidates(ref, st, True) if not variants else None
             out += moment_candidates(ref, b, pts, axes) if variants else \
-                [c for c in moment_candidates(ref, b, pts, axes) if c.mistake is None]
+                [c for c in every if c.mistake is None and c.law == "moment" and c.body == b.name]
     if "energy" in laws:
         from .engine import Candidate
 
@@ -205,7 +214,7 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
             res.verdict = CORRECT
             res.feedback = notes + ([f"a valid combination of the balance equations ({_regime_text(reg, regimes)})"]
                                     if len(regimes) > 1 else [])
-            res.expected = _expected(ref, st, expr)
+            res.expected = _expected_eom(ref) if st.kind == "eom" else ""
             if st.kind == "balance":
                 carried.balances.append((st.index, None, None))
             return res
@@ -285,7 +294,7 @@ def _carried(ref: Reference, row, reg, carried: Carried) -> tuple[int, ...]:
                 continue
             for mset in itertools.combinations(mods, nm):
                 starts = [base] if not mset else _determinate_subsets(
-                    ref, [ref.row(e, reg) for e in _modified_equations(ref, mset)], reg)
+                    ref, [ref.row(e, reg) for e in _modified_cached(ref, mset, carried.cache)], reg)
                 for start, bset in itertools.product(starts, itertools.combinations(wrong, nb)):
                     rows = [ref.row(e, reg) for _, e, _ in bset]
                     allowed = [_replaceable(ref, start, c, reg) for _, _, c in bset]
@@ -338,6 +347,13 @@ def _spans_all(rows, n: int) -> bool:
         if np.all(np.isfinite(M[i])):
             return np.linalg.matrix_rank(M[i], tol=1e-9 * max(1.0, np.abs(M[i]).max())) >= n
     return False
+
+
+def _modified_cached(ref: Reference, mods, cache: dict) -> list:
+    key = tuple((i, kind, b.name) for i, kind, b, _ in mods)
+    if key not in cache:
+        cache[key] = _modified_equations(ref, mods)
+    return cache[key]
 
 
 def _modified_equations(ref: Reference, mods) -> list:
@@ -399,12 +415,6 @@ def _eom_forms(ref: Reference, reg, student):
         except (ValueError, ZeroDivisionError):
             pass
     return out
-
-
-def _expected(ref: Reference, st: Step, expr) -> str:
-    if st.kind == "eom":
-        return _expected_eom(ref)
-    return _best_diff(ref, st, expr, ref.regimes()[0])[1]
 
 
 def _expected_eom(ref: Reference) -> str:
