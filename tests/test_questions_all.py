@@ -1,6 +1,7 @@
 """Every question kind against bundled problems, with and without contact modes: each is answered or
-refused in one clear paragraph (a RigidkinError), never an internal error; and every example's JSON
-output validates against the schema shipped with the package.
+refused in one clear paragraph (a RigidkinError), never an internal error; every example's JSON
+output (all its questions answered, in under 10 s of CPU) validates against the schema shipped with
+the package.
 
 The questions are written as TOML and read by the problem-file reader, as a user's would be; their
 fields come from the problem itself (its first coordinate, its reactions, its contacts).
@@ -9,6 +10,7 @@ fields come from the problem itself (its first coordinate, its reactions, its co
 from __future__ import annotations
 
 import json
+import time
 from importlib import resources
 
 import jsonschema
@@ -184,8 +186,11 @@ SCHEMA_NAMES = [n if n not in ("chain", "slip-to-roll", "paper-pull", "boulder-p
 def test_json_output_validates_against_the_schema(name):
     toml = examples.HERE / f"{name}.toml"
     system, spec = load_problem(toml) if toml.exists() else (examples.build(name), None)
+    start = time.process_time()
     sol = system.solve()
     data = json.loads(json.dumps(solution_data(sol, spec, _answers(system, spec)), ensure_ascii=False))
+    spent = time.process_time() - start
+    assert spent < 10, f"{name}: solving and answering took {spent:.1f} s of CPU"   # the issue's bound
     jsonschema.validate(data, _schema())
     for a in data["answer_data"].values():
         if a["answered"] and a["kind"] == "event" and a["happens"]:
