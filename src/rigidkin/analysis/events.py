@@ -290,7 +290,7 @@ def _event_1dof(solution, integral, when, name) -> Event:
     else:
         g_q = along_motion(solution, g, integral)
     values = numeric_values(solution)
-    extra = {s: DEFAULT_PROBE for s in (sp.sympify(q0).free_symbols | sp.sympify(u0).free_symbols)
+    extra = {s: DEFAULT_PROBE for s in sorted(sp.sympify(q0).free_symbols | sp.sympify(u0).free_symbols, key=str)
              if s not in values}
     values.update(extra)
     notes = []

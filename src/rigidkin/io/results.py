@@ -41,6 +41,7 @@ def regime_data(regime) -> dict:
     acc = regime.accelerations
     large = regime.mass_matrix.rows > READABLE_DOF and isinstance(acc, LazyMap) and not acc.computed
     return {
+        "label": regime.describe(),
         "conditions": [_condition(c) for c in regime.conditions],
         "validity": [_condition(c) for c in regime.validity],
         "eom": [_s(e) for e in regime.eom],
