@@ -147,6 +147,9 @@ def _structure_cases():
          + "]\n", 2, ["more than 10000 keys"]),
         ("toml-long-statement", sub('title = "Pendulum"', 'title = "Pendulum"\nstatement = "' + "x" * 20_000 + '"'),
          2, ["line 2", "statement", "characters long"]),
+        ("toml-header-of-spaces", PENDULUM + "[" + " " * 9_000 + "junk]\n", 2, ["junk", "unknown field"]),
+        ("toml-array-line-of-spaces", PENDULUM + "junk = [\n" + ("  [ 1," + " " * 9_000 + "2 ],\n") * 50 + "]\n", 2,
+         ["line 18, loads.junk"]),
         ("toml-keys-in-strings-do-not-count", sub('title = "Pendulum"', 'title = "Pendulum"\nstatement = """'
                                                   + "a.b.c = [[{" * 800 + '"""'), 0, []),
     ]

@@ -12,10 +12,50 @@ import re
 from collections.abc import Sequence
 
 _KEY_PART = re.compile(r"[A-Za-z0-9_-]+|\"(?:[^\"\\]|\\.)*\"|'[^']*'")
-_HEADER = re.compile(r"^\s*(\[\[?)\s*(.+?)\s*\]\]?\s*(#.*)?$")
 _KEY = re.compile(r"^\s*((?:[A-Za-z0-9_-]+|\"(?:[^\"\\]|\\.)*\"|'[^']*')"
                   r"(?:\s*\.\s*(?:[A-Za-z0-9_-]+|\"(?:[^\"\\]|\\.)*\"|'[^']*'))*)\s*=")
 _INLINE_KEY = re.compile(r"[{,]\s*([A-Za-z0-9_-]+|\"(?:[^\"\\]|\\.)*\"|'[^']*')\s*=")
+
+
+def _header(line: str) -> tuple[str, str] | None:
+    """``("[" or "[[", "a.b")`` for a table header line, else None; one pass over the line (a regular
+    expression with ``\\s*(.+?)\\s*`` backtracks for minutes on a long line of spaces)."""
+    s = line.lstrip()
+    if not s.startswith("["):
+        return None
+    double = s.startswith("[[")
+    body = s[2:] if double else s[1:]
+    i, n, quote = 0, len(body), None
+    end = body.find("]")
+    if end < 0:
+        return None
+    if '"' not in body[:end] and "'" not in body[:end]:
+        i = n = end                         # no quoted key: the header ends at the first ']'
+    while i < n:
+        ch = body[i]
+        if quote:
+            if ch == "\\" and quote == '"':
+                i += 2
+                continue
+            if ch == quote:
+                quote = None
+        elif ch in "\"'":
+            quote = ch
+        elif ch == "]":
+            break
+        i += 1
+    if i >= len(body) or body[i] != "]":
+        return None
+    rest = body[i + 1:]
+    if double:
+        if not rest.startswith("]"):
+            return None
+        rest = rest[1:]
+    rest = rest.strip()
+    if rest and not rest.startswith("#"):
+        return None
+    key = body[:i].strip()
+    return ("[[" if double else "[", key) if key else None
 
 
 def _parts(dotted: str) -> tuple[str, ...]:
@@ -66,10 +106,10 @@ class Locator:
                 if line.count(in_string) % 2 == 1:
                     in_string = None
                 continue
-            m = _HEADER.match(line)
-            if m and not _KEY.match(line):
-                parts = self._resolve(_parts(m.group(2)), arrays)
-                if m.group(1) == "[[":
+            h = _header(line)
+            if h and not _KEY.match(line):
+                parts = self._resolve(_parts(h[1]), arrays)
+                if h[0] == "[[":
                     idx = arrays.get(parts, 0)
                     arrays[parts] = idx + 1
                     current = parts + (idx,)

@@ -824,6 +824,7 @@ def parse_problem(text: str, filename: str = "<problem>") -> tuple[System, Probl
 def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") -> tuple[System, ProblemSpec]:
     """A problem from parsed TOML ``data`` (``text``, if given, lets errors name lines)."""
     path = Path(path)
+    check_tree(data, str(path))
     locator = Locator(text, str(path))
     spec = validate_schema(data, locator)
     if spec.name is not None:
