@@ -373,3 +373,18 @@ def test_box_pushed_at_height_slides_or_tips_first(mu_s):
     else:
         assert ev.kind == "opens" and ev.contact == "A" and ev.t == pytest.approx(t_tip, abs=1e-9)
         assert res.segments[1].mode == {"A": "open", "C": "stick"}
+
+
+def test_statically_indeterminate_rest_is_reported_with_what_is_determined():
+    s = rod(0.5, 0.0, 0.0, supports=(0.5, 0.2))
+    # both supports sticking: the two no-slip rows repeat each other, so the friction split is unknown
+    with pytest.raises(rk.ConstraintError, match="statically indeterminate") as err:
+        s.solve(mode={"A": "stick", "B": "stick"})
+    assert "contact B: no slip" in str(err.value)
+    # the normal forces are determined (lever rule) and the friction is carried by A alone here
+    held = s.solve(mode={"A": "stick", "B": "slip"})
+    assert held.coordinates == () and held.setup.held == ("B",)
+    vals = {"m": 1.5, "g": G}
+    N_A = float(held.reactions["N_A"].subs({sym: vals[str(sym)] for sym in held.reactions["N_A"].free_symbols}))
+    assert N_A == pytest.approx(1.5 * G * 0.2 / 0.7, rel=1e-12)
+    assert any("statically indeterminate" in step.title for step in held.setup.trace.steps)

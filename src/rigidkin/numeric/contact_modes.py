@@ -126,7 +126,7 @@ def check(hyb, mode: dict, forced: dict, names, t_, y, p, zero: float, force_tol
             _, _, s0 = hyb.contact_state(name, t_, y, p)
             if s0 is not None and abs(s0) <= zero:
                 _, _, s2 = hyb.contact_state(name, t_ + h, y2, p)
-                if forced[name] * s2 <= 1e-12 * scale:
+                if forced[name] * s2 < -1e-12 * scale:
                     return False, k, mode, f"the slip at {name} would not grow in the direction of its friction"
     return True, k, mode, ""
 
@@ -219,3 +219,23 @@ def critical_mu(hyb, mode: dict, names, t_, y, p) -> str:
             return (f"Sliding at {name} with its contact closed needs µ < {star:.6g} here (with µ = {float(p[i]):.6g} "
                     f"the normal force N would be {1.0 / inv[1]:.4g}).")
     return ""
+
+
+def confirm(hyb, model, t_, y, p) -> tuple[dict, int, str]:
+    """After an event: the mode the transition chose, checked as a whole against the contact problem over
+    every touching contact; if it fails, the first consistent candidate in the fixed order (or
+    :class:`ContactParadox`).  Returns (mode, regime, a note when the choice changed)."""
+    mode, k = dict(model.mode), model.regime_index
+    scale = max(1.0, float(np.max(np.abs(np.asarray(y)[:2 * hyb.layout.n]))))
+    zero = 1e-9 * scale
+    names = touching(hyb, mode, t_, y, p, zero)
+    forced = {}
+    for sc in model.solution.setup.sign_choices:
+        if sc.load in hyb.contacts and sc.symbol in model.regime.signs:
+            forced[sc.load] = int(model.regime.signs[sc.symbol])
+    ok, _, _, why = check(hyb, mode, forced, names, t_, y, p, zero)
+    if ok:
+        return mode, k, ""
+    dec = decide(hyb, t_, y, p, None, {k_: v for k_, v in forced.items() if k_ not in names})
+    return dec.mode, dec.regime, (f"the contact problem over {', '.join(names)} rejects "
+                                  f"{describe_mode(hyb.system, mode)} ({why}); {describe_mode(hyb.system, dec.mode)}")

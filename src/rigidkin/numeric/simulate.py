@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import sympy as sp
@@ -26,7 +26,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..errors import InputError
 from ..model.constraints import SMOOTH, Coulomb
-from .contact_modes import decide
+from .contact_modes import confirm, decide
 from .impact import impact, mode_after
 from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
 from .result import Event, Segment, SimulationResult, build_result
@@ -326,6 +326,12 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         w = model.watches[watch_of[i]]
         try:
             mode_, k, y, ev = _transition(hyb, model, w, t_now, y, p, e_of, rest_speed)
+            mode2, k2, note = confirm(hyb, hyb.model(mode_, k), t_now, y, p)     # every touching contact
+            if note:
+                mode_, k = mode2, k2
+                y[:2 * n] = hyb.project_rates(mode_, t_now, y[:2 * n], p)
+                ev = replace(ev, after=lay.as_dict(y), mode_after=hyb.model(mode_, k).description,
+                             detail="; ".join(filter(None, [ev.detail, note])))
         except (ModeUnavailable, SimulationError) as exc:
             status = "stopped"
             stop = getattr(exc, "stop_reason", None) or ("mode-unavailable" if isinstance(exc, ModeUnavailable)
