@@ -170,7 +170,8 @@ def _unit_cases():
         ("unit-unknown", sub('unit = "kg"', 'unit = "blorp"'), 2, ["parameters.m.unit", "'blorp' is not a unit"]),
         ("unit-semicolon", sub('unit = "kg"', 'unit = "kg; import os"'), 2, ["parameters.m.unit", "';'"]),
         ("unit-empty-parentheses", sub('unit = "kg"', 'unit = "()"'), 2, ["parameters.m.unit"]),
-        ("unit-percent", sub("value = 1 }", 'value = "50 %" }'), 2, ["parameters.m.value", "neither a number nor a quantity"]),
+        ("unit-percent", sub("value = 1 }", 'value = "50 %" }'), 2,
+         ["parameters.m.value", "neither a number nor a quantity"]),
         ("unit-ok-compound", sub('unit = "m/s^2"', 'unit = "(kg*m)/(kg*s**2)"'), 0, []),
         ("value-tower", sub("value = 1 }", 'value = "9 kg^9^9^9" }'), 2, ["parameters.m.value", "towers"]),
         ("value-number-tower", sub("value = 1 }", 'value = "9^9^9^9 kg" }'), 2, ["parameters.m.value"]),
@@ -265,6 +266,12 @@ def _value_cases():
         ("negative-plate-side", sub('shape = "slender_rod", mass = "m", length = "l", axis = "y"',
                                     'shape = "plate", mass = "m", a = "-l", b = "l"'), 2,
          ["bodies.rod", "a of the rectangular plate", "positive"]),
+        ("question-set-negative-mass", PENDULUM + '[[ask.question]]\nkind = "equilibrium"\nset = { m = -2 }\n', 2,
+         ["ask.question[0].set.m", "must be positive"]),
+        ("question-set-acos", PENDULUM + '[[ask.question]]\nkind = "equilibrium"\nset = { l = "acos(2)" }\n', 2,
+         ["ask.question[0].set.l", "complex"]),
+        ("question-set-wrong-unit", PENDULUM + '[[ask.question]]\nkind = "equilibrium"\nset = { l = "2 kg" }\n', 2,
+         ["ask.question[0].set.l", "dimension M"]),
         ("block-ok", BLOCK, 0, []),
     ]
 
@@ -415,6 +422,11 @@ def _api_cases():
         s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=G)
         s.spring("k", G, s.origin, k)
 
+    def solve_negative():
+        s, m, l, th, R, G = pendulum()
+        s.pin("O", s.origin, s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=G))
+        s.solve(substitutions={m: -1})
+
     return [
         ("api-negative-mass", lambda: body(lambda m: -m, lambda l: l), ["mass", "positive"]),
         ("api-zero-length", lambda: body(lambda m: m, lambda l: 0), ["length", "positive"]),
@@ -431,6 +443,7 @@ def _api_cases():
         ("api-homoglyph-name", lambda: rk.System("s").parameter("\u0430", "kg"), ["non-ASCII"]),
         ("api-generated-name", lambda: rk.System("s").coordinate("q_theta", "angle"), ["rigidkin makes itself"]),
         ("api-c-keyword-name", lambda: rk.System("s").coordinate("int", "angle"), ["C keyword"]),
+        ("api-solve-negative-substitution", solve_negative, ["value given for m", "positive"]),
         ("api-string-expression", lambda: rk.System("s").gravity("9.81"), ["string"]),
     ]
 

@@ -22,12 +22,12 @@ from sympy.physics.vector import Vector
 
 from ..analysis.questions import Question
 from ..errors import InputError, ModelError, RigidkinError
-from ..model.checks import REAL, check_problem_name, generated_clash, problem_name, require
+from ..model.checks import POSITIVE, REAL, check_problem_name, generated_clash, problem_name, require
 from ..model.constraints import Contact
 from ..model.loads import V as DAMPER_SPEED
 from ..model.shapes import SHAPES
 from ..model.system import System
-from ..units import TIME, to_si, unit_dimension
+from ..units import ONE, TIME, to_si, unit_dimension
 from . import schema as S
 from .expressions import (
     Scope,
@@ -693,7 +693,11 @@ class _Builder:
         out = {}
         for pname, v in table.items():
             sym = self._lookup(self.s.parameters, "parameter", pname, path + (pname,))
-            out[sym] = self.value(v, path + (pname,))
+            info = self.s.parameter_info[pname]
+            where = self.where(*path, pname)
+            value = self.value(v, path + (pname,), info.dimension if info.unit or info.dimension != ONE else None)
+            out[sym] = require(value, POSITIVE if sym.is_positive else REAL, f"value of the parameter {pname}", where,
+                               self.s.parameter_values(), InputError)
         return out
 
     def questions(self, ask: S.AskSpec) -> tuple[Question, ...]:

@@ -18,7 +18,7 @@ from . import constraints as C
 from . import loads as L
 from .bodies import Body
 from .chains import remember, shallow
-from .checks import NONNEGATIVE, POSITIVE, check_identifier, require
+from .checks import NONNEGATIVE, POSITIVE, REAL, check_identifier, require
 from .definitions import Defined, Definition
 from .definitions import define as define_quantity
 from .frames import Frame, make_reference_frame
@@ -578,6 +578,10 @@ class System:
         """
         from ..laws import solve_with
 
+        for sym, value in (substitutions or {}).items():
+            if isinstance(value, (int, float, sp.Basic)) and not isinstance(value, bool):
+                require(value, POSITIVE if getattr(sym, "is_positive", False) else REAL, f"value given for {sym}",
+                        "solve(substitutions=...)", self.parameter_values())
         return solve_with(self, method, mode=mode or {}, independent=independent,
                           substitutions=substitutions or {}, integrate=integrate)
 
