@@ -55,7 +55,13 @@ def _terms(e) -> list:
     return [] if e == 0 else list(sp.Add.make_args(e))
 
 
+def _atoms(e):
+    return frozenset(e.atoms(sp.Symbol)) | frozenset(e.atoms(sp.Derivative))
+
+
 def _same(a, b) -> bool:
+    if _atoms(a) != _atoms(b):
+        return False
     d = sp.expand(a - b)
     return d == 0 or sp.cancel(d) == 0
 
@@ -109,6 +115,8 @@ def _pair(U, R, scale) -> TermDiff:
                 break
     for u in list(left_u):
         for r in left_r:
+            if _atoms(u) - _atoms(r) - {t} and _atoms(r) - _atoms(u) - {t}:
+                continue
             ratio = sp.cancel(u / r)
             if ratio.is_number and ratio != 0:
                 coeffs.append((u, r))
