@@ -254,7 +254,7 @@ def test_painleve_rod_reported_with_the_critical_coefficient():
     msg = str(err.value)
     mu_star = (1 + 3 * math.cos(theta)**2) / (3 * math.sin(theta) * math.cos(theta))
     assert mu_star == pytest.approx(4 / 3)
-    assert f"µ < {mu_star:.6g}" in msg
+    assert f"µ* = {mu_star:.6g}" in msg
     N = m * G / (1 + 3 * math.cos(theta)**2 - 3 * 2.0 * math.sin(theta) * math.cos(theta))
     assert f"would be {N:.4g}" in msg
     assert err.value.stop_reason == "no-consistent-mode"
@@ -385,6 +385,22 @@ def test_statically_indeterminate_rest_is_reported_with_what_is_determined():
     held = s.solve(mode={"A": "stick", "B": "slip"})
     assert held.coordinates == () and held.setup.held == ("B",)
     vals = {"m": 1.5, "g": G}
-    N_A = float(held.reactions["N_A"].subs({sym: vals[str(sym)] for sym in held.reactions["N_A"].free_symbols}))
-    assert N_A == pytest.approx(1.5 * G * 0.2 / 0.7, rel=1e-12)
+    n_a = float(held.reactions["N_A"].subs({sym: vals[str(sym)] for sym in held.reactions["N_A"].free_symbols}))
+    assert n_a == pytest.approx(1.5 * G * 0.2 / 0.7, rel=1e-12)
     assert any("statically indeterminate" in step.title for step in held.setup.trace.steps)
+
+
+def test_painleve_non_uniqueness_is_reported_not_guessed():
+    from rigidkin.numeric.contact_modes import ContactParadox
+
+    # the same rod turning fast (θ̇² > g/(a sin θ)): N = m(g − a sinθ θ̇²)/(1 + 3cos²θ − 3µ sinθ cosθ) > 0
+    # while sliding, and the free end A would also rise (ÿ_A = −g + a sinθ θ̇² > 0) if it opened
+    theta, a, m, w = math.atan(2.0), 0.6, 1.5, 5.0
+    s = rod(2.0, theta, 0.0, m=m, length=2 * a)
+    start = {"dot(theta)": w, "dot(y)": a * math.cos(theta) * w, "dot(x)": -1.0 - a * math.sin(theta) * w}
+    with pytest.raises(ContactParadox, match="2 solutions") as err:
+        simulate(s, 0.05, initial_state=start)
+    assert err.value.stop_reason == "ambiguous"
+    N = m * (G - a * math.sin(theta) * w**2) / (1 + 3 * math.cos(theta)**2 - 6 * math.sin(theta) * math.cos(theta))
+    assert N > 0 and f"would be {N:.4g}" in str(err.value)
+

@@ -216,8 +216,10 @@ def critical_mu(hyb, mode: dict, names, t_, y, p) -> str:
             continue
         star = -inv[0] * float(p[i]) / (inv[1] - inv[0])
         if star > 0:
-            return (f"Sliding at {name} with its contact closed needs µ < {star:.6g} here (with µ = {float(p[i]):.6g} "
-                    f"the normal force N would be {1.0 / inv[1]:.4g}).")
+            return (f"The critical coefficient of friction at {name} is µ* = {star:.6g} here: sliding with the contact "
+                    f"closed, its normal force changes sign through infinity at µ*, and the contact problem has "
+                    f"exactly one solution for µ < µ* (with µ = {float(p[i]):.6g} the normal force N would be "
+                    f"{1.0 / inv[1]:.4g}).")
     return ""
 
 
