@@ -217,6 +217,8 @@ ROD_OK = [
     {"kind": "answer", "question": "after_blow", "claim": "6*F_hat/(m*l)"},
     {"kind": "answer", "question": "after_blow", "claim": 3.0},
     {"kind": "answer", "question": "largest_angle", "claim": "sqrt(3)*F_hat/sqrt(K*m)"},
+    {"kind": "balance", "law": "impulse", "claim": "F_hat*l/2 = m*l**2/12*dot(theta)"},   # angular, about O
+    {"kind": "balance", "law": "impulse", "claim": "F_hat + R_Ox_hat = 0"},                # linear: G stays at O
 ]
 ROD_BAD = [
     ({"kind": "eom", "claim": "m*l**2/3*ddot(theta) + K*theta = 0"},
@@ -224,6 +226,9 @@ ROD_BAD = [
     ({"kind": "fbd", "claim": "-m*g*Ey at O; R_Ox*Ex + R_Oy*Ey at O"}, "missing from the diagram: torsional spring"),
     ({"kind": "answer", "question": "after_blow", "claim": "3*F_hat/(2*m*l)"}, "the answer is 6·F̂/(l·m)"),
     ({"kind": "eom", "claim": "m*l**2/12*ddot(theta) - K*theta = 0"}, "sign: the term -K·θ"),
+    ({"kind": "balance", "law": "impulse", "claim": "F_hat*l/2 = m*l**2/3*dot(theta)"},
+     "it does not hold just after the blow, where θ̇ = 6·F̂/(l·m)"),
+    ({"kind": "balance", "law": "impulse", "claim": "F_hat*l/2 = m*l/12*dot(theta)"}, "dimension"),
 ]
 
 

@@ -97,6 +97,10 @@ def grade(ws: Worksheet) -> GradeReport:
                 res = grade_fbd(ref, st, carried)
             elif st.kind == "answer":
                 res = grade_answer(ref, st)
+            elif st.law == "impulse":
+                from .impulse import grade_impulse
+
+                res = grade_impulse(ref, st)
             else:
                 res = grade_equation(ref, st, carried)
         except _Unreadable as exc:

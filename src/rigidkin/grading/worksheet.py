@@ -42,7 +42,7 @@ MAX_FBD_ITEMS = 40
 KINDS = ("kinematics", "fbd", "balance", "eom", "answer")
 LAWS = {"force": "force", "euler1": "force", "newton": "force", "momentum": "force",
         "moment": "moment", "moments": "moment", "euler2": "moment", "angular-momentum": "moment",
-        "energy": "energy", "work-energy": "energy", "power": "energy"}
+        "energy": "energy", "work-energy": "energy", "power": "energy", "impulse": "impulse"}
 _TOP = {"problem", "student", "title", "step", "mode"}
 _STEP = {"kind", "claim", "body", "point", "law", "direction", "question", "tolerance", "note"}
 _CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f\u202a-\u202e\u2066-\u2069]")
@@ -224,7 +224,7 @@ def _step(raw, i: int, loc: Locator) -> Step:
         if w not in LAWS:
             raise InputError(f"'{w}' is not a law the grader knows.", where=_at(loc, *base, "law"),
                              hint="Laws: force (Euler's 1st law), moment (2nd law about a point), energy "
-                                  "(work–energy).")
+                                  "(work–energy), impulse (impulse–momentum).")
         law = LAWS[w]
     direction = _claim_text(raw["direction"], loc, *base, "direction") if "direction" in raw else None
     tol = raw.get("tolerance")
