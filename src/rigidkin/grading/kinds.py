@@ -73,16 +73,16 @@ def grade_kinematics(ref: Reference, st: Step, carried: Carried) -> StepResult:
     if what in ("v", "a"):
         P = ref.point_of(name)
         if P is None:
-            raise InputError(f"the problem has no point or body named '{name}'.", where=st.where,
-                             hint=f"Points: {', '.join(ref.system.points)}; bodies: {', '.join(ref.system.bodies)}.")
+            raise _unreadable(f"the problem has no point or body named '{name}' (points: "
+                              f"{', '.join(ref.system.points)}; bodies: {', '.join(ref.system.bodies)})")
         engine = ref.setup.vector(kin.velocity(P) if what == "v" else kin.acceleration(P))
         body = next((b for b in ref.system.bodies.values() if b.centre is P), None)
         label = f"{what}_{name}"
     else:
         frame = ref.system.frames.get(name) or (ref.system.bodies[name].frame if name in ref.system.bodies else None)
         if frame is None:
-            raise InputError(f"the problem has no frame or body named '{name}'.", where=st.where,
-                             hint=f"Frames: {', '.join(ref.system.frames)}; bodies: {', '.join(ref.system.bodies)}.")
+            raise _unreadable(f"the problem has no frame or body named '{name}' (frames: "
+                              f"{', '.join(ref.system.frames)}; bodies: {', '.join(ref.system.bodies)})")
         engine = ref.setup.vector(kin.omega(frame) if what in ("omega", "w") else kin.alpha(frame))
         body = next((b for b in ref.system.bodies.values() if b.frame is frame), None)
         label = f"{'ω' if what in ('omega', 'w') else 'α'}_{name}"
