@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+import sympy as sp
 
 import rigidkin as rk
 from rigidkin.io.problem import parse_problem
@@ -285,9 +286,9 @@ def belt(m=1.0, k=10.0, v=0.5, mu_s=0.6, mu_k=0.4):
     return s
 
 
-def test_stick_slip_limit_cycle_against_the_closed_form():
+@pytest.mark.parametrize("cycles", [60, pytest.param(1000, marks=pytest.mark.slow)])
+def test_stick_slip_limit_cycle_against_the_closed_form(cycles):
     m, k, v, mu_s, mu_k = 1.0, 10.0, 0.5, 0.6, 0.4
-    cycles = 60
     w = math.sqrt(k / m)
     x_s, x_k = mu_s * m * G / k, mu_k * m * G / k        # slip starts at k x = µs m g; slides about x_k
     d = x_s - x_k
@@ -404,3 +405,16 @@ def test_painleve_non_uniqueness_is_reported_not_guessed():
     N = m * (G - a * math.sin(theta) * w**2) / (1 + 3 * math.cos(theta)**2 - 6 * math.sin(theta) * math.cos(theta))
     assert N > 0 and f"would be {N:.4g}" in str(err.value)
 
+
+
+def test_phases_answer_with_a_phase_at_rest():
+    from rigidkin.analysis.phases import Phase, run_phases
+
+    slip = sp.Function("slip")
+    s = incline(0.4, 0.6, 0.45)
+    x = s.coordinates[0]
+    res = run_phases(s, [Phase("sliding up", {"ground": "slip"}, {}, sp.Eq(slip(sp.Symbol("ground")), 0)),
+                         Phase("at rest", {"ground": "stick"})], start={x.diff(rk.t): -2})
+    g, beta, mu_k = (s.parameters[k] for k in ("g", "beta", "mu_k"))
+    assert sp.simplify(res[0].duration - 2 / (g * (sp.sin(beta) + mu_k * sp.cos(beta)))) == 0
+    assert res[1].duration is None and any("µ_s ≥ tan(β)" in n for n in res[1].notes)

@@ -108,9 +108,10 @@ def _choose_regime(solution, state, values):
     raise RigidkinError("no regime's conditions hold at the start of the phase.")
 
 
-def _condition_text(expr, system) -> str | None:
-    """'c > 0' read for a person: solved for a friction coefficient (or another parameter) when linear
-    in it; None when it holds for every positive value of that parameter."""
+def _condition_text(expr, system, inclusive: bool = False) -> str | None:
+    """'c > 0' (``inclusive``: 'c ≥ 0', as a validity condition such as |F| ≤ µs N holds at equality) read
+    for a person: solved for a friction coefficient (or another parameter) when linear in it; None when
+    it holds for every positive value of that parameter."""
     expr = algebra.readable(expr)
     params = [p.symbol for p in system.parameter_info.values() if expr.has(p.symbol)]
     params.sort(key=lambda s: (0 if s.name.startswith("mu") else 1, s.name))
@@ -126,8 +127,10 @@ def _condition_text(expr, system) -> str | None:
                     return None
                 if rel == ">" and p.is_positive and _num(b, values) < 0:
                     return None
+                if inclusive:
+                    rel = {">": "≥", "<": "≤"}[rel]
                 return f"{text(p)} {rel} {text(b)}"
-    return f"{text(expr)} > 0"
+    return f"{text(expr)} {'≥' if inclusive else '>'} 0"
 
 
 def numeric_values_for(system) -> dict:
@@ -164,7 +167,7 @@ def run_phases(system, phases: list[Phase], start: dict | None = None) -> list[P
             notes = []
             for cond in regime.validity:
                 cexpr = algebra.readable(_at(cond.expr, start_state))
-                ctext = _condition_text(cexpr, system)
+                ctext = _condition_text(cexpr, system, inclusive=cond.relation in (">=", "<="))
                 if _num(cexpr, values) < 0:
                     notes.append(f"{cond.label} fails at the start: {ctext or 'it'} is needed")
                 elif ctext:
