@@ -150,6 +150,30 @@ def test_collar_rod_correct_and_mistakes():
     check("collar-rod", COLLAR_OK, COLLAR_BAD)
 
 
+# collar-force: massless collar at C = x Ex pushed by P, rod pinned at C; the collar carries no inertia, so
+# P = R_Ox and the rod's x-balance gives P = m (ẍ + l/2 (θ̈ cos θ − θ̇² sin θ)); about C (a_C = ẍ Ex):
+# −m g l/2 sin θ = m l²/3 θ̈ + m l/2 cos θ ẍ.
+FORCE_OK = [
+    {"kind": "fbd", "body": "rod", "claim": "-m*g*Ey at G; R_Ox*Ex + R_Oy*Ey at C"},
+    {"kind": "fbd", "body": "collar", "claim": ["P*Ex at C", "N*Ey at C", "-R_Ox*Ex - R_Oy*Ey at C", "M_track*Ez"]},
+    {"kind": "balance", "law": "force", "body": "collar", "direction": "Ex", "claim": "P - R_Ox = 0"},
+    {"kind": "eom", "claim": "P = m*(ddot(x) + l/2*(ddot(theta)*cos(theta) - dot(theta)**2*sin(theta)))"},
+    {"kind": "balance", "law": "moment", "point": "C", "body": "rod",
+     "claim": "-m*g*l/2*sin(theta) = m*l**2/3*ddot(theta) + m*l/2*cos(theta)*ddot(x)"},
+]
+FORCE_BAD = [
+    ({"kind": "balance", "law": "moment", "point": "C", "body": "rod",
+      "claim": "-m*g*l/2*sin(theta) = m*l**2/3*ddot(theta)"}, "inertial-moment term missing"),
+    ({"kind": "fbd", "body": "collar", "claim": "N*Ey at C; -R_Ox*Ex - R_Oy*Ey at C; M_track*Ez"},
+     "missing from the diagram: applied force P"),
+    ({"kind": "eom", "claim": "P = m*ddot(x)"}, "both rotation terms missing"),
+]
+
+
+def test_collar_force_correct_and_mistakes():
+    check("collar-force", FORCE_OK, FORCE_BAD)
+
+
 # disk-spring-incline: rolling x = r θ, spring force −K x es, gravity along es m g sin β;
 # about the contact point (a_P ∥ r_PC): (m g sin β − K x) r = 3/2 m r² θ̈; equilibrium θ = m g sin β/(K r).
 DISK_OK = [

@@ -212,7 +212,8 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
             res.feedback = ["it is not linear in the accelerations and reactions, as every balance law is"]
             return res
         if space.is_trivial(row):
-            res.feedback = ["it reduces to 0 = 0 once the constraints are used: true, but it says nothing about the motion"]
+            res.feedback = ["it reduces to 0 = 0 once the constraints are used: true, but it says nothing about "
+                            "the motion"]
             return res
         if space.in_span(ref.basis(reg), row):
             res.verdict = CORRECT
