@@ -27,7 +27,7 @@ from ..model.constraints import Contact
 from ..model.loads import V as DAMPER_SPEED
 from ..model.shapes import SHAPES
 from ..model.system import System
-from ..units import ONE, TIME, to_si, unit_dimension
+from ..units import LENGTH, ONE, TIME, to_si, unit_dimension
 from . import schema as S
 from .expressions import (
     Scope,
@@ -404,10 +404,11 @@ class _Builder:
     def coordinate(self, name, c: S.CoordinateSpec):
         path = ("coordinates", name)
         self.declared(name, "coordinate", path)
-        for key in ("initial", "rate"):
+        dim = unit_dimension(c.unit, self.where(*path, "unit")) if c.unit else LENGTH if c.kind == "length" else ONE
+        for key, d in (("initial", dim), ("rate", dim / TIME)):
             v = getattr(c, key)
-            if isinstance(v, float | int) and not isinstance(v, bool):
-                to_si(v, None, self.where(*path, key))      # refuses NaN and infinities
+            if v is not None:
+                to_si(v, None, self.where(*path, key), d)   # finite, of the coordinate's dimension
         q = self.call(path, self.s.coordinate, name, c.sense, c.kind, c.unit, c.initial, c.rate, c.description,
                       c.positive)
         self.scope.names[name] = q
