@@ -48,6 +48,7 @@ class ContactRows:
     mu_k: float = 0.0
     rolling: bool = False              # no slip ever (infinite friction)
     restitution: float = 0.0
+    extra: tuple = ()                  # further no-slip rows (J, b) of a rolling contact in 3D
 
 
 @dataclass(frozen=True)
@@ -89,9 +90,10 @@ def _solve_candidate(M, u0, contacts, states):
             cols.append(c.Jn)
             eqs.append((c.Jn, target - c.bn))
         elif st == STICK:
-            cols.extend([c.Jn, c.Jt])
+            cols.extend([c.Jn, c.Jt, *(J for J, _ in c.extra)])
             eqs.append((c.Jn, target - c.bn))
             eqs.append((c.Jt, -c.bt))
+            eqs.extend((J, -b_) for J, b_ in c.extra)
         else:
             sigma = 1.0 if st == SLIDE_POS else -1.0
             cols.append(c.Jn - sigma * c.mu_k * c.Jt)       # Λ_t = −σ µk Λ_n: one unknown
@@ -123,7 +125,8 @@ def impulse_problem(M: np.ndarray, u0: np.ndarray, contacts: list[ContactRows], 
                     plastic: bool = False) -> ImpulseSolution:
     """Solve the impact of every contact in ``contacts`` at once (see the module docstring)."""
     if plastic:
-        contacts = [ContactRows(c.name, c.Jn, c.bn, c.Jt, c.bt, c.mu_s, c.mu_k, c.rolling, 0.0) for c in contacts]
+        contacts = [ContactRows(c.name, c.Jn, c.bn, c.Jt, c.bt, c.mu_s, c.mu_k, c.rolling, 0.0, c.extra)
+                    for c in contacts]
     speed = max(1.0, float(np.max(np.abs(u0))) if len(u0) else 1.0)
     first, count = None, 0
     for states in itertools.product(*[_options(c) for c in contacts]):
@@ -154,7 +157,7 @@ def impulse_problem(M: np.ndarray, u0: np.ndarray, contacts: list[ContactRows], 
                 lt = float(lam[j + 1])
                 normal[c.name], tangential[c.name] = ln, lt
                 ok &= c.rolling or abs(lt) <= c.mu_s * ln + tol * imp
-                j += 2
+                j += 2 + len(c.extra)
             else:
                 sigma = 1.0 if st == SLIDE_POS else -1.0
                 normal[c.name], tangential[c.name] = ln, -sigma * c.mu_k * ln

@@ -116,7 +116,8 @@ def impact(hybrid: Hybrid, mode: dict, contact: str, t_: float, y: np.ndarray, p
         if isinstance(c.friction, Coulomb) and m > 1:
             mu_s, mu_k = hybrid._param_value(c.friction.static, p), hybrid._param_value(c.friction.kinetic, p)
         rows.append(ContactRows(name, A[0], float(b[0]), A[1] if m > 1 else None, float(b[1]) if m > 1 else 0.0,
-                                mu_s, mu_k, c.friction == ROLLING, float(restitution.get(name, 0.0))))
+                                mu_s, mu_k, c.friction == ROLLING, float(restitution.get(name, 0.0)),
+                                tuple((A[r], float(b[r])) for r in range(2, m))))
     u0 = np.array([y[lay.n + s] for s in slots])
     model = hybrid.model(imode, 0)
     T0, _ = model.energy(t_, y, p)
