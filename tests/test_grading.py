@@ -275,7 +275,9 @@ TRACK_BAD = [
     ({"kind": "kinematics", "claim": "a_C = (R - r)*ddot(theta)*et"}, "only the rates were differentiated"),
     ({"kind": "balance", "law": "force", "direction": "er_in", "claim": "N - m*g*cos(theta) = 0"},
      "wrong acceleration of the mass centre"),
-    ({"kind": "eom", "claim": "(R - r)*ddot(theta) + g*sin(theta) = 0"}, "coefficient"),
+    ({"kind": "eom", "claim": "(R - r)*ddot(theta) + g*sin(theta) = 0"}, "rotational inertia missing"),
+    ({"kind": "balance", "law": "energy", "claim": "m*(R - r)**2*dot(theta)**2/2 - m*g*(R - r)*cos(theta) = 0"},
+     "rotational inertia missing"),
     ({"kind": "answer", "question": "speed_to_loop", "claim": "5*g*(R - r)"}, "the answer is 11·g·(R - r)/3"),
 ]
 

@@ -197,7 +197,8 @@ class Reference:
         return out
 
     def moment_equation(self, body, P, axis: Vector, inertia_about=None, inertial: bool = True,
-                        alpha: Vector | None = None, accel: Vector | None = None) -> sp.Expr:
+                        alpha: Vector | None = None, accel: Vector | None = None,
+                        rotational: bool = True) -> sp.Expr:
         """Euler's 2nd law about P along ``axis``: M_P = dH̄/dt + (r̄ − r_P) × m ā.
 
         ``inertia_about`` (a point) replaces Ī by the inertia about that point in dH̄/dt (the mistakes);
@@ -217,7 +218,9 @@ class Reference:
             return I.dot(a) + w.cross(I.dot(w))
 
         M = self.moment_vector(body, rP)
-        if not inertial:
+        if not rotational:
+            rhs = d.cross(m * aG)
+        elif not inertial:
             IP = Ibar + _shift(m, d, self.F)
             rhs = rate(IP)
         elif inertia_about is not None:

@@ -81,6 +81,10 @@ def moment_candidates(ref: Reference, body, points, axes) -> list[Candidate]:
             out.append(Candidate(lab, right, body.name, "moment", P.name))
             if body.is_massless:
                 continue
+            if not kin.is_zero_vector(body.inertia.dot(kin.alpha(body.frame))):
+                out.append(Candidate(lab, ref.moment_equation(body, P, axis, rotational=False), body.name, "moment",
+                                     P.name, "rotational inertia missing: the term Ī·α of dH̄/dt was left out, as if "
+                                             f"{body.name} were a particle", right))
             if not at_centre:
                 out.append(Candidate(lab, ref.moment_equation(body, P, axis, inertial=False), body.name, "moment",
                                      P.name, f"inertial-moment term missing: moments about the moving point "

@@ -274,7 +274,7 @@ def _named_mistake(ref: Reference, st: Step, row, reg) -> str | None:
 
 
 def _all_mistakes(ref: Reference, st: Step):
-    if st.kind == "balance":
+    if st.kind == "balance" and st.law in ("force", "moment"):
         return _candidates(ref, st)
     # an equation of motion: every mistake of every law that leads to it
     key = "eom-mistakes"
