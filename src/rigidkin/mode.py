@@ -216,3 +216,9 @@ def _trace_kinematics(setup: ModeSetup) -> None:
                "velocity and acceleration by the transport theorem, F d/dt r = B d/dt r + ω × r.")
     for note in kin.assumptions:
         tr.add("Kinematics", "Assumption", [], note)
+    if not red.independent:
+        moving = [k for k, v in red.rate_map.items() if v != 0]
+        tr.add("Kinematics", "No degree of freedom", [(k, v) for k, v in red.rate_map.items()],
+               "the constraints of this mode fix every coordinate: "
+               + ("the bodies are carried along by the moving surfaces" if moving else "the bodies are at rest")
+               + "; there is no equation of motion, and the reactions follow from the balance laws (statics).")
