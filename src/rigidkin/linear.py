@@ -83,12 +83,19 @@ class _Probe:
         v = self.mats[0, i, j]
         return abs(v) if np.isfinite(v) else 0.0
 
-    def eliminate(self, k: int, j: int, rows) -> None:
+    def eliminate(self, rows, cols, rest) -> None:
+        """The numeric counterpart of eliminating the pivot block (rows × cols) from the rows ``rest``."""
         with np.errstate(all="ignore"):
-            piv = self.mats[:, k, j][:, None]
-            for i in rows:
-                f = self.mats[:, i, j][:, None] / piv
-                self.mats[:, i, :] = self.mats[:, i, :] - f * self.mats[:, k, :]
+            B = self.mats[:, rows][:, :, cols]                       # (points, k, k)
+            if len(rows) == 1:
+                inv = 1 / B
+            else:
+                det = B[:, 0, 0] * B[:, 1, 1] - B[:, 0, 1] * B[:, 1, 0]
+                inv = np.stack([np.stack([B[:, 1, 1], -B[:, 0, 1]], -1),
+                                np.stack([-B[:, 1, 0], B[:, 0, 0]], -1)], -2) / det[:, None, None]
+            for i in rest:
+                f = np.einsum("pa,pab->pb", self.mats[:, i, cols], inv)
+                self.mats[:, i, :] = self.mats[:, i, :] - np.einsum("pb,pbc->pc", f, self.mats[:, rows, :])
 
 
 def solve_linear(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, symmetric: bool = False,
@@ -96,8 +103,29 @@ def solve_linear(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, symmetri
     """x with A x = b, for A with full column rank (rows ≥ columns, a consistent system).
 
     ``symmetric``: A is a mass matrix (square, positive definite), pivoted on its diagonal.
+    Where every single pivot left vanishes at some special state (a bearing couple resolved along axes
+    that turn with a spin angle: cos φ, sin φ), a 2 × 2 block whose determinant does not is used instead
+    (its inverse is its adjugate over that determinant, reduced with sin² + cos² = 1).
     Raises ZeroDivisionError when no pivot is left (A is singular).
     """
+    forced: list = []
+    for _ in range(4):
+        try:
+            return _solve(A, b, simplify, symmetric, seed, forced, retry=len(forced) < 3)
+        except _Retry as hard:
+            forced.append(hard.column)
+    raise ZeroDivisionError("singular")        # not reached: the last try accepts what it finds
+
+
+class _Retry(Exception):
+    """Every pivot left for ``column`` vanishes at a special state: start again with it in a 2 × 2 block."""
+
+    def __init__(self, column: int):
+        super().__init__(column)
+        self.column = column
+
+
+def _solve(A, b, simplify, symmetric, seed, forced, retry):
     nrows, n = A.shape
     A, b = A.as_mutable(), b.as_mutable()
     probe = _Probe(A, seed)
@@ -106,9 +134,9 @@ def solve_linear(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, symmetri
         return bool(_state_functions(A[i, j]))
 
     free_rows, free_cols = list(range(nrows)), list(range(n))
-    order = []                  # (row, column) of each pivot
+    blocks = []                 # (rows, columns, inverse of the block) of each pivot
     tol = 1e-10 * probe.scale
-    for _ in range(n):
+    while free_cols:
         if symmetric:
             cands = [(i, i) for i in free_cols if i in free_rows]
         else:
@@ -119,21 +147,76 @@ def solve_linear(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, symmetri
         if not cands:
             raise ZeroDivisionError("singular")
         k, j = min(cands, key=lambda ij: (probe.zero_at(*ij), state_dependent(*ij), -probe.value(*ij), ij))
-        order.append((k, j))
-        free_rows.remove(k)
-        free_cols.remove(j)
-        rest = [i for i in free_rows if A[i, j] != 0]
+        block = None
+        want = [c for c in forced if c in free_cols]
+        if want and not symmetric:
+            block = _block_pivot(A, probe, free_rows, free_cols, tol, want[0])
+        if block is None and probe.zero_at(k, j):
+            block = _block_pivot(A, probe, free_rows, free_cols, tol)
+            if block is None and retry and not symmetric:
+                raise _Retry(j)
+        if block is None:
+            rows, cols, inv = [k], [j], sp.Matrix([[1 / A[k, j]]])
+        else:
+            rows, cols, inv = block
+        blocks.append((rows, cols, inv))
+        for r in rows:
+            free_rows.remove(r)
+        for c in cols:
+            free_cols.remove(c)
+        rest = [i for i in free_rows if any(A[i, c] != 0 for c in cols)]
         for i in rest:
-            f = A[i, j] / A[k, j]
+            f = (sp.Matrix([[A[i, c] for c in cols]]) * inv).applyfunc(_reduce)
             for c in free_cols:
-                if A[k, c] != 0:
-                    A[i, c] = sp.cancel(A[i, c] - f * A[k, c])
-            A[i, j] = sp.Integer(0)
-            b[i] = b[i] - f * b[k]
-        probe.eliminate(k, j, rest)
+                if any(A[r, c] != 0 for r in rows):
+                    A[i, c] = _reduce(A[i, c] - sum((f[a] * A[r, c] for a, r in enumerate(rows)), sp.Integer(0)))
+            for c in cols:
+                A[i, c] = sp.Integer(0)
+            b[i] = b[i] - sum((f[a] * b[r] for a, r in enumerate(rows)), sp.Integer(0))
+        probe.eliminate(rows, cols, rest)
     x = [sp.Integer(0)] * n
-    for pos in reversed(range(n)):
-        k, j = order[pos]
-        acc = b[k] - sum((A[k, c] * x[c] for _, c in order[pos + 1:] if A[k, c] != 0), sp.Integer(0))
-        x[j] = simplify(acc / A[k, j])
+    for pos in reversed(range(len(blocks))):
+        rows, cols, inv = blocks[pos]
+        later = [c for _, cs, _ in blocks[pos + 1:] for c in cs]
+        acc = sp.Matrix([b[r] - sum((A[r, c] * x[c] for c in later if A[r, c] != 0), sp.Integer(0)) for r in rows])
+        for c, v in zip(cols, inv * acc):
+            x[c] = simplify(v)
     return sp.Matrix(x)
+
+
+def _reduce(e):
+    """A coefficient after elimination, cancelled (and reduced with sin² + cos² = 1 where it is small)."""
+    e = sp.cancel(e)
+    if sp.count_ops(e) <= 60 and e.has(sp.sin, sp.cos):
+        e = algebra.trig_reduce(e)
+    return e
+
+
+def _block_pivot(A, probe, free_rows, free_cols, tol, column=None):
+    """A 2 × 2 block of the free rows and columns (one of them ``column`` if given) whose determinant
+    vanishes at no special state."""
+    best = None
+    pairs = [(c1, c2) for a, c1 in enumerate(free_cols) for c2 in free_cols[a + 1:]
+             if column is None or column in (c1, c2)]
+    m = probe.mats
+    for c1, c2 in pairs:
+        for b_, r1 in enumerate(free_rows):
+            for r2 in free_rows[b_ + 1:]:
+                with np.errstate(all="ignore"):
+                    det = m[:, r1, c1] * m[:, r2, c2] - m[:, r1, c2] * m[:, r2, c1]
+                if not np.isfinite(det[0]) or abs(det[0]) <= tol:
+                    continue
+                zeros = int((~np.isfinite(det[1:]) | (np.abs(det[1:]) < 1e-9 * probe.scale)).sum())
+                if zeros:
+                    continue
+                spread = float(np.nanstd(np.abs(det)) / abs(det[0]))       # ≈ 0: a determinant free of the state
+                key = (round(spread, 6), -abs(det[0]))
+                if best is None or key < best[0]:
+                    best = (key, [r1, r2], [c1, c2])
+    if best is None:
+        return None
+    _, rows, cols = best
+    B = sp.Matrix([[A[r, c] for c in cols] for r in rows])
+    det = _reduce(sp.expand(B.det()))
+    inv = (B.adjugate() / det).applyfunc(_reduce)
+    return rows, cols, inv
