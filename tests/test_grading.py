@@ -32,12 +32,12 @@ def graded(problem: str, steps: list[dict], tmp_path=None):
     return grade(parse_worksheet(_toml(problem, steps), path))
 
 
-def check(problem: str, correct: list[dict], mistakes: list[tuple[dict, str]]):
+def check(problem: str, correct: list[dict], mistakes: list[tuple[dict, str]], tmp_path=None):
     """Every correct step graded correct; every mistake incorrect with the cause (a phrase) named."""
-    rep = graded(problem, correct)
+    rep = graded(problem, correct, tmp_path)
     for st, res in zip(correct, rep.steps):
         assert res.verdict == "correct", (problem, st, res.feedback)
-    rep = graded(problem, [m for m, _ in mistakes])
+    rep = graded(problem, [m for m, _ in mistakes], tmp_path)
     for (st, cause), res in zip(mistakes, rep.steps):
         assert res.verdict == "incorrect", (problem, st)
         assert any(cause in f for f in res.feedback), (problem, st, cause, res.feedback)
@@ -227,8 +227,13 @@ SLIP_BAD = [
 ]
 
 
-def test_slip_to_roll_correct_and_mistakes():
-    check("slip-to-roll", SLIP_OK, SLIP_BAD)
+def test_slip_to_roll_correct_and_mistakes(tmp_path):
+    from rigidkin import examples
+
+    # the card's model without its questions (the phases are not graded here)
+    card = (examples.HERE / "slip-to-roll.toml").read_text(encoding="utf-8").split("[[ask.question]]")[0]
+    (tmp_path / "slip.toml").write_text(card, encoding="utf-8")
+    check("slip.toml", SLIP_OK, SLIP_BAD, tmp_path)
 
 
 # rod-impulse: pivot at the centre O (I_O = m l²/12), torsional spring −K θ, gravity through O:

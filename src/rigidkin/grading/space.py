@@ -138,11 +138,11 @@ def vanishes(values: np.ndarray, scale: np.ndarray | None = None, rtol: float = 
     return True
 
 
-def free_dim(rows: list[np.ndarray], n_acc: int) -> int | None:
-    """How many independent reaction-free equations (equations of motion) the rows imply, at the first
-    usable sample: rank of the rows minus rank of their reaction columns."""
+def free_dim(rows: list[np.ndarray], n_acc: int) -> tuple[int, int] | None:
+    """The reaction-free equations (equations of motion) the rows imply, at the first usable sample:
+    (how many, the rank of their acceleration part).  A consistent, determinate set has n_acc of each."""
     if not rows:
-        return 0
+        return (0, 0)
     B = np.stack(rows, axis=1)
     ok = _usable(B)
     if not ok.any():
@@ -151,7 +151,16 @@ def free_dim(rows: list[np.ndarray], n_acc: int) -> int | None:
     scale = np.linalg.norm(M, axis=1)
     M = M[scale > 0] / scale[scale > 0, None]
     if M.shape[0] == 0:
-        return 0
+        return (0, 0)
+    R = M[:, n_acc:-1]
+    if R.shape[1]:
+        _, s_full, vh = np.linalg.svd(R.T, full_matrices=True)
+        rank = int((s_full > 1e-9 * max(1.0, s_full.max(initial=0))).sum())
+        Y = vh[rank:].T                       # combinations of the rows free of every reaction
+    else:
+        Y = np.eye(M.shape[0])
+    if Y.shape[1] == 0:
+        return (0, 0)
+    free = Y.T @ M
     tol = 1e-9
-    return int(np.linalg.matrix_rank(M, tol=tol) - np.linalg.matrix_rank(M[:, n_acc:-1], tol=tol)
-               if M.shape[1] - 1 > n_acc else np.linalg.matrix_rank(M, tol=tol))
+    return (int(np.linalg.matrix_rank(free, tol=tol)), int(np.linalg.matrix_rank(free[:, :n_acc], tol=tol)))
