@@ -418,3 +418,43 @@ def test_phases_answer_with_a_phase_at_rest():
     g, beta, mu_k = (s.parameters[k] for k in ("g", "beta", "mu_k"))
     assert sp.simplify(res[0].duration - 2 / (g * (sp.sin(beta) + mu_k * sp.cos(beta)))) == 0
     assert res[1].duration is None and any("µ_s ≥ tan(β)" in n for n in res[1].notes)
+
+
+# a rod leaning on a smooth wall and a rough floor, released from rest ----------------------------------
+def leaning_rod(mu_s, mu_k, theta0, m=10.0, l=2.0):
+    """The ladder card with friction at the foot B (θ from the wall, x the foot's distance from it)."""
+    s = rk.System("rough-ladder")
+    m_, l_ = s.parameter("m", "kg", value=m), s.parameter("l", "m", value=l)
+    g = s.parameter("g", "m/s^2", value=G)
+    ms, mk = s.parameter("mu_s", "", value=mu_s), s.parameter("mu_k", "", value=mu_k)
+    th = s.coordinate("theta", "angle of the rod from the wall", initial=theta0, rate=0)
+    x = s.coordinate("x", "foot from the wall", kind="length", initial=l*math.sin(theta0), rate=0)
+    R = s.frame("R", angle=th)
+    B = s.point("B", s.origin, x * s.inertial.x)
+    Gp = s.point("G", B, l_ / 2 * R.y)
+    rod = s.body("rod", rk.shapes.SlenderRod(m_, l_, axis="y"), frame=R, at=Gp)
+    A = s.point("A", B, l_ * R.y, body=rod)
+    Bb = s.point("Bf", B, 0 * R.y, body=rod)
+    s.contact("A", rod, s.line(s.origin, s.inertial.x), centre=A, normal_name="N_A")
+    s.contact("B", rod, s.line(s.origin, s.inertial.y), centre=Bb, friction={"static": ms, "kinetic": mk},
+              normal_name="N_B", friction_name="F_B")
+    s.gravity(g)
+    return s
+
+
+@pytest.mark.parametrize("mu_s", [0.4, 0.2])
+def test_rod_leaning_on_a_rough_floor_stays_when_tan_theta_within_2_mu_s(mu_s):
+    theta0, m = 0.6, 10.0
+    res = simulate(leaning_rod(mu_s, 0.8 * mu_s, theta0, m=m), 0.3, n_points=31)
+    assert res.reached_end
+    if math.tan(theta0) <= 2 * mu_s:
+        # statics: N_B = m g, N_A = F_B = (m g / 2) tan θ
+        assert res.segments[0].mode == {"A": "slip", "B": "stick"} and not res.events
+        assert res["N_B"][0] == pytest.approx(m * G, rel=1e-12)
+        assert res["N_A"][0] == pytest.approx(m * G * math.tan(theta0) / 2, rel=1e-12)
+        assert res["F_B"][0] == pytest.approx(m * G * math.tan(theta0) / 2, rel=1e-12)
+        assert np.ptp(res["theta"]) == 0.0
+    else:
+        assert res.segments[0].mode["B"] == "slip" and res["theta"][-1] > theta0
+        assert np.allclose(np.abs(res["F_B"]), 0.8 * mu_s * res["N_B"], rtol=1e-12)
+
