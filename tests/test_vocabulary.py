@@ -534,3 +534,19 @@ def test_belt_friction_on_a_pulley_capstan():
     grips = [c.expr for c in sol.validity if "grips" in c.label]
     wanted = [T1 * sp.exp(mu * sp.pi) - T2, T2 * sp.exp(mu * sp.pi) - T1]
     assert len(grips) == 2 and all(any(sp.simplify(gx - w) == 0 for gx in grips) for w in wanted)
+
+
+def test_half_shapes_carry_their_arcs_only_on_their_curved_face():
+    """A hemisphere touching by its curved face (centre O, radius r) has the arc π/2 about toward; a
+    contact at another centre or radius (or arc=False) is a full circle."""
+    s = rk.System("bowl")
+    m, r = s.parameter("m", "kg"), s.parameter("r", "m")
+    th = s.coordinate("theta", "tilt")
+    B = s.frame("B", angle=th)
+    O1 = s.point("O1", s.origin, r * s.inertial.y)
+    h = s.body("h", rk.shapes.Hemisphere(m, r, toward="-y"), frame=B, at=O1)
+    floor = s.line(s.origin, s.inertial.y)
+    c = s.contact("P", h, floor, centre=O1, radius=r)
+    assert c.arc is not None and c.arc.half_angle == sp.pi / 2 and c.arc.toward == -B.y
+    assert s.contact("Q", h, floor, centre=O1, radius=r, arc=False).arc is None
+    assert s.contact("S", h, floor, centre=h.centre, radius=r / 2).arc is None
