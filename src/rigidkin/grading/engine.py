@@ -15,7 +15,7 @@ import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols, outer
 
 from ..errors import RigidkinError
-from ..laws.newton_euler import body_balances, body_loads
+from ..laws.newton_euler import body_balances
 from .space import Sampler, plain_accel, to_plain
 
 t = dynamicsymbols._t
@@ -188,9 +188,9 @@ class Reference:
     def moment_vector(self, body, rP: Vector, loads=None) -> Vector:
         """Σ (r − r_P) × F + Σ couples on the body (its diagram, or the given (vector, location|None) loads)."""
         if loads is None:
-            F, M, _ = body_loads(self.setup, body)
-            d = self.kin.position(body.centre) - rP
-            return M + d.cross(F)
+            bal = self.balance(body)
+            d = self.setup.vector(self.kin.position(body.centre) - rP)
+            return bal.moment + d.cross(bal.force)
         out = Vector(0)
         for vec, loc in loads:
             out += vec if loc is None else (loc - rP).cross(vec)
