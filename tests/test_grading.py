@@ -427,3 +427,12 @@ def test_variants_escape_problem_text(tmp_path):
 def test_variants_bad_input(capsys, args, message):
     assert main(["variants", "rod-impulse", *args]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_claim_that_would_expand_hugely_is_graded_quickly():
+    import time
+
+    t0 = time.perf_counter()
+    rep = graded("ladder", [{"kind": "balance", "claim": "N_A*(m + l + g + theta + dot(theta) + sin(theta) + "
+                                                         "cos(theta))**12 = ddot(theta)"}])
+    assert rep.steps[0].verdict == "incorrect" and time.perf_counter() - t0 < 60

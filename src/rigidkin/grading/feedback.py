@@ -50,6 +50,15 @@ class TermDiff:
         return out
 
 
+def expandable(e) -> bool:
+    """Small enough to expand: no power of a sum above the 4th, a bounded size (a claim such as
+    (a + b + ... + j)**12 would expand into hundreds of thousands of terms)."""
+    e = sp.sympify(e)
+    if sp.count_ops(e) > 1500:
+        return False
+    return not any(isinstance(p.base, sp.Add) and p.exp.is_number and abs(p.exp) > 4 for p in e.atoms(sp.Pow))
+
+
 def _terms(e) -> list:
     e = sp.expand(sp.sympify(e))
     return [] if e == 0 else list(sp.Add.make_args(e))
@@ -72,6 +81,8 @@ def _constant(c) -> bool:
 
 def term_diff(student, engine) -> TermDiff | None:
     """The term-by-term comparison of two equations ``= 0`` (None when too large to pair up)."""
+    if not (expandable(student) and expandable(engine)):
+        return None
     U, R = _terms(student), _terms(engine)
     if not U or not R or len(U) * len(R) > MAX_PAIRS:
         return None

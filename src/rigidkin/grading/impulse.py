@@ -54,7 +54,7 @@ def grade_impulse(ref: Reference, st: Step) -> StepResult:
         return res
     at = expr.xreplace(rates).xreplace({hats[n]: v for n, v in a.details["reaction_impulses"].items()})
     at = at.xreplace(conf)
-    scale = sum((abs(x) for x in sp.Add.make_args(sp.expand(expr.xreplace(rates).xreplace(conf)))), sp.S.Zero)
+    scale = sum((abs(x) for x in sp.Add.make_args(expr.xreplace(rates).xreplace(conf))), sp.S.Zero)
     vals = ref.sampler.evaluate([space.to_plain(at), space.to_plain(scale)])
     if space.vanishes(vals[:, :1], np.abs(vals)):
         res.verdict = CORRECT

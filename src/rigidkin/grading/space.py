@@ -76,7 +76,6 @@ class Sampler:
 
     def row(self, plain: sp.Expr) -> np.ndarray:
         """(samples, n_unknowns + 1): the coefficients of the unknowns and the remaining term."""
-        plain = sp.expand(plain) if sp.count_ops(plain) < 400 else plain
         coeffs = [plain.diff(u) for u in self.unknowns]
         for c in coeffs:
             if c.has(*self.unknowns):

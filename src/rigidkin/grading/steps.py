@@ -391,7 +391,12 @@ def _modified_equations(ref: Reference, mods) -> list:
 
 def _best_diff(ref: Reference, st: Step, expr, reg):
     """The engine's equation nearest to the student's, and the term-by-term differences."""
-    student = sp.expand(ref.scalar(expr, reg))
+    from .feedback import expandable
+
+    student = ref.scalar(expr, reg)
+    if not expandable(student):
+        return None, "", None
+    student = sp.expand(student)
     if st.kind == "eom":
         cands = [sp.expand(ref.scalar(e, reg)) for e in _eom_forms(ref, reg, student)]
     else:
