@@ -201,7 +201,8 @@ CASES = [
     ("sweep-threads-zero", [*SWEEP, "--param", "theta=0:1:3", "--threads", "0"], 2, "--threads"),
     ("sweep-workers-huge", [*SWEEP, "--param", "theta=0:1:3", "--workers", "99999999"], 2, "--workers"),
     ("sweep-chunk-negative", [*SWEEP, "--param", "theta=0:1:3", "--chunk", "-5"], 2, "--chunk"),
-    ("sweep-value-nan", [*SWEEP, "--param", "theta=nan:1:3"], 2, "not a finite number"),
+    ("sweep-value-nan", [*SWEEP, "--param", "theta=nan:1:3"], 2, "quantity 'nan'"),
+    ("sweep-value-huge", [*SWEEP, "--param", "theta=1e400:1:3"], 2, "not a finite number"),
     # outputs: checked before any work, written whole or not at all
     ("csv-dev-full", [*SIM, "--csv", "/dev/full"], 2, "no space left on device"),
     ("csv-folder", [*SIM, "--csv", "{d}/a-folder"], 2, "it is a folder"),

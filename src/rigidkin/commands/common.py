@@ -122,9 +122,9 @@ def value(text: str, where: str) -> float:
     """
     import math
 
-    from ..numeric.state import quantity
+    from ..units import parse_quantity
 
-    v = quantity(text, None, where)
+    v = parse_quantity(text, None, where)
     if not math.isfinite(v):
         raise RigidkinError(f"'{text}' is not a finite number.", where=where,
                             hint="Give a finite value, e.g. 0.5 or '30 deg'.")
