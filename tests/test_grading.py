@@ -185,6 +185,7 @@ DISK_OK = [
     {"kind": "balance", "law": "moment", "point": "P", "claim": "m*g*r*sin(beta) - K*r*x = 3*m*r**2/2*ddot(theta)"},
     {"kind": "eom", "claim": "3/2*m*r**2*ddot(theta) + K*r**2*theta = m*g*r*sin(beta)"},
     {"kind": "answer", "question": "equilibrium", "claim": "m*g*sin(beta)/(K*r)"},
+    {"kind": "answer", "question": "equilibrium", "claim": "sqrt(2*K/(3*m))"},   # 3/2 m r² θ̈ + K r² θ = 0
 ]
 DISK_BAD = [
     ({"kind": "balance", "law": "moment", "point": "P", "claim": "m*g*r*sin(beta) - K*r*x = m*r**2/2*ddot(theta)"},
