@@ -362,3 +362,22 @@ def test_the_hard_stops_of_the_time_limit(how, status, words, bound):
     assert res.returncode == status, res.stderr
     assert words in res.stderr and "Traceback" not in res.stderr
     assert seconds < bound, seconds
+
+
+def test_solve_exits_1_when_a_question_is_left_unanswered(monkeypatch, capsys, folder):
+    """A question the engine cannot answer is said in the output, and the status says so (1, not 0)."""
+    import rigidkin.analysis.answers as answers
+    from rigidkin.errors import RigidkinError
+
+    problem = folder / "asks.toml"
+    problem.write_text(pendulum() + '[[ask.question]]\nkind = "event"\nname = "swing"\nwhen = "theta = 0"\n'
+                                    'start = { theta = 0.1, "dot(theta)" = 0 }\n')
+    assert main(["solve", str(problem)]) == 0
+    assert "swing" in capsys.readouterr().out
+
+    def cannot(*a, **kw):
+        raise RigidkinError("no closed form and no simulation for this question.")
+
+    monkeypatch.setattr(answers, "answer", cannot)
+    assert main(["solve", str(problem)]) == 1
+    assert "no closed form and no simulation" in capsys.readouterr().out
