@@ -18,7 +18,6 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
-import sys
 import threading
 import time
 
@@ -65,9 +64,7 @@ def deadline(seconds: float | None, hard_stop: bool = False):
 
     def watchdog():
         if not done.wait(seconds + GRACE_THREAD):
-            text = f"rigidkin: {message(seconds, _STEP['now'])}\n"
-            with contextlib.suppress(OSError):
-                sys.stdout.flush()
+            text = f"rigidkin: {message(seconds, _STEP['now'])}\n"     # no flush: the main thread may hold stdout
             with contextlib.suppress(OSError):
                 os.write(2, text.encode("utf-8", "replace"))
             _end(child)
