@@ -297,3 +297,32 @@ def test_half_shapes_carry_their_arcs_only_on_their_curved_face():
     assert c.arc is not None and c.arc.half_angle == sp.pi / 2 and c.arc.toward == -B.y
     assert s.contact("Q", h, floor, centre=O1, radius=r, arc=False).arc is None
     assert s.contact("S", h, floor, centre=h.centre, radius=r / 2).arc is None
+
+
+def test_simulation_stops_when_the_rope_goes_slack():
+    """A motor torque c t (counter-clockwise) on the Atwood pulley: (m1 + m2 + M/2) ÿ1 = (m1 − m2) g + c t/R,
+    T1 = m1 (g − ÿ1) reaches zero when ÿ1 = g, at t* = R g (2 m2 + M/2)/c; until then the energy balance
+    (with the motor's work) holds."""
+    from rigidkin.model.ropes import Wrap
+    from rigidkin.numeric.simulate import simulate
+
+    s = rk.System("atwood with a motor")
+    m1, m2, M = s.parameter("m1", "kg", value=3), s.parameter("m2", "kg", value=1), s.parameter("M", "kg", value=2)
+    R, g, c = s.parameter("R", "m", value=0.1), s.parameter("g", "m/s^2", value=9.81), \
+        s.parameter("c", "N*m/s", value=2.0)
+    y1 = s.coordinate("y1", "depth of block 1 below the axle", kind="length", initial=1.0, rate=0)
+    y2 = s.coordinate("y2", "depth of block 2 below the axle", kind="length", initial=1.0)
+    phi = s.coordinate("phi", "pulley rotation, counter-clockwise")
+    pulley = s.body("pulley", rk.shapes.Disk(M, R), frame=s.frame("P", angle=phi), at=s.origin)
+    A, B = _hanging(s, "A", -R, y1, m1), _hanging(s, "B", R, y2, m2)
+    s.pin("O", s.origin, pulley)
+    s.torque("motor", pulley, c * rk.t * s.inertial.z)
+    s.rope("rope", [A, Wrap(pulley, R, "cw"), B], tensions=("T1", "T2"))
+    s.gravity(g)
+    res = simulate(s, 2.0)
+    t_star = 0.1 * 9.81 * (2 * 1 + 2 / 2) / 2.0
+    assert res.stop_reason == "slack" and res.t_final == pytest.approx(t_star, rel=1e-9)
+    # y1(t) = 1 + ((m1 − m2) g t²/2 + c t³/(6R))/(m1 + m2 + M/2)
+    y_star = 1 + ((3 - 1) * 9.81 * t_star**2 / 2 + 2.0 * t_star**3 / (6 * 0.1)) / (3 + 1 + 1)
+    assert res.final_state["y1"] == pytest.approx(y_star, rel=1e-9)
+    assert res.energy_drift < 1e-8

@@ -292,6 +292,11 @@ class Hybrid:
                     Fs = [R(r) for r in setup.reactions if str(r).startswith(str(c.F))]
                     watch(Watch("slips", name, f"contact {name} starts to slip", -1, quantity="friction cone"),
                           mu**2 * N**2 - sum((f**2 for f in Fs), sp.Integer(0)))
+        for c in self.system.constraints.values():      # ropes and cables can only pull (model.ropes)
+            if c.kind in ("rope", "cable") and mode.get(c.name) != OPEN:
+                for tension in c.reactions():
+                    watch(Watch("slack", c.name, f"{c.kind} {c.name} goes slack ({tension} = 0)", -1,
+                                quantity=str(tension)), R(tension))
         conditions = []
         for sc in setup.sign_choices:
             if sc.symbol not in signs:
