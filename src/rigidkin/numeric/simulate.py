@@ -468,12 +468,12 @@ def _transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
         detail = (f"the friction needed at {w.name} reaches µN; it slips with slip speed "
                   f"{'positive' if w.slip_sign > 0 else 'negative'}")
-    elif w.kind == "arc":          # the contact point reaches the end of its profile's arc (model.profiles)
-        exc = SimulationError(f"the contact point of {w.name} reaches the end of its profile's arc: the edge meets "
-                              "the surface, and the model has no contact there.", where=hyb.system.name,
-                              hint="To follow the motion beyond, model the edge (or flat face) as a contact of "
-                                   "its own.")
-        exc.stop_reason = "arc-end"
+    elif w.kind == "slack":        # a rope's or cable's tension reaches zero (model.ropes)
+        exc = SimulationError(f"the tension of {w.name} reaches zero: it goes slack, and the simulation does not "
+                              "follow a slack rope.", where=hyb.system.name,
+                              hint="Until then the motion is exact; a slack rope needs the ends' motions as "
+                                   "coordinates of their own.")
+        exc.stop_reason = "slack"
         raise exc
     elif w.kind == "arc":          # the contact point reaches the end of its profile's arc (model.profiles)
         exc = SimulationError(f"the contact point of {w.name} reaches the end of its profile's arc: the edge meets "
