@@ -131,6 +131,8 @@ def test_a_single_mu_keeps_meaning_both_and_mu_s_below_mu_k_is_refused():
                                'kinetic = 0.4 }')
     with pytest.raises(rk.RigidkinError, match="static coefficient"):
         parse_problem(bad, "incline.toml")
+    with pytest.raises(rk.InputError, match="smaller than its kinetic"):     # parameters: checked with values
+        simulate(incline(0.3, 0.2, 0.4), 0.1)
 
 
 # (e) impacts: one impulse problem over every contact closed or closing -------------------------------

@@ -233,6 +233,14 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     base = dict(params or {})
     pvecs = [parameter_vector(system, lay, {**base, **dict(ph.params)}) for ph in phases]
     e_of = _restitution(system, restitution)
+    for pv in pvecs:                     # µs ≥ µk with the values of this run
+        for name, c in hyb.contacts.items():
+            if isinstance(c.friction, Coulomb) and c.friction.two:
+                mu_s, mu_k = hyb._param_value(c.friction.static, pv), hyb._param_value(c.friction.kinetic, pv)
+                if mu_s < mu_k:
+                    raise InputError(f"contact {name} has a static coefficient of friction µs = {mu_s:g} smaller "
+                                     f"than its kinetic one µk = {mu_k:g}.", where="parameters",
+                                     hint="Give µs ≥ µk (a single µ means both).")
     y_q, mode_, k = initial_conditions(system, initial_state, {**base, **dict(phases[0].params)}, mode, t0)
     until_fns = [_phase_function(lay, ph) for ph in phases]
     y = np.concatenate([y_q, [0.0]])      # the last slot: work of non-conservative loads and impulses
