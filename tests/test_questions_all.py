@@ -197,7 +197,8 @@ def test_json_output_validates_against_the_schema(name):
             coords = set(data["coordinates"])
             assert coords <= set(a["state"]) and {f"dot({c})" for c in coords} <= set(a["state"])
         if a["answered"] and a["value"] is not None and a["value"]["numeric"] is not None:
-            parsed = sp.parse_expr(a["value"]["exact"], local_dict={"t": sp.Symbol("t")})
+            names = {n: sp.Symbol(n) for n in [*data["parameters"], *data["coordinates"], "t"]}
+            parsed = sp.parse_expr(a["value"]["exact"], local_dict=names)
             if not parsed.free_symbols:
                 assert float(parsed) == pytest.approx(a["value"]["numeric"], rel=1e-9, abs=1e-12)
 
@@ -213,3 +214,19 @@ def test_schema_refuses_a_malformed_answer():
         jsonschema.validate(bad, schema)
     with pytest.raises(jsonschema.ValidationError):
         jsonschema.validate({"answered": False}, schema)        # a refusal must give its reason
+
+
+def test_event_located_by_simulation_is_the_contact_opening_itself():
+    """N_A = 0 asked of the ladder through the simulation path: the simulator's own 'contact A opens' is the
+    event (it happens, at the closed-form angle acos(2/3)), not 'never ... first contact A opens'."""
+    from rigidkin.analysis.events import event_by_simulation
+
+    system, _ = load_problem(examples.HERE / "ladder.toml")
+    sol = system.solve()
+    th = sol.coordinates[0]
+    ev = event_by_simulation(sol, sp.Eq(sp.Symbol("N_A"), 0), {th: sp.Rational(1, 10)}, name="leaves_wall")
+    assert ev.happens and ev.time > 0, ev.notes
+    # from θ0 at rest: N_A = 0 where cos θ = (2/3) cos θ0
+    assert float(ev.value) == pytest.approx(float(sp.acos(sp.Rational(2, 3) * sp.cos(sp.Rational(1, 10)))), abs=1e-6)
+    names = {str(k) for k in ev.state}
+    assert {"theta(t)", "x(t)", "Derivative(theta(t), t)", "Derivative(x(t), t)"} <= names

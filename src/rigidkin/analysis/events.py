@@ -209,7 +209,14 @@ def event_by_simulation(solution, when, start: dict | None = None, name: str = "
         raise RigidkinError(f"there is no closed form ({reason.rstrip('.')}), and a numerical search needs "
                             f"values for the parameters {', '.join(missing)}.",
                             hint="Give the parameters values in the problem.")
-    state = full_state(system, dict(start or {}))
+    given = dict(start or {})
+    state = full_state(system, given)
+    for qd, rel in solution.relations.items():          # dependent coordinates and rates follow the mode
+        if qd not in given:
+            state[qd] = at_state(rel, state)
+    for ud, rel in solution.rate_relations.items():
+        if ud not in given:
+            state[ud] = at_state(rel, state)
     values = numeric_values(solution)
     initial = {}
     for k, v in state.items():
