@@ -16,6 +16,8 @@ from importlib import resources
 import jsonschema
 import pytest
 import sympy as sp
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from rigidkin import algebra, examples
 from rigidkin.analysis.answers import answer
@@ -230,3 +232,26 @@ def test_event_located_by_simulation_is_the_contact_opening_itself():
     assert float(ev.value) == pytest.approx(float(sp.acos(sp.Rational(2, 3) * sp.cos(sp.Rational(1, 10)))), abs=1e-6)
     names = {str(k) for k in ev.state}
     assert {"theta(t)", "x(t)", "Derivative(theta(t), t)", "Derivative(x(t), t)"} <= names
+
+
+@pytest.mark.slow
+@settings(max_examples=8, deadline=None, suppress_health_check=list(HealthCheck))
+@given(data=st.data())
+def test_hypothesis_questions_over_the_vocabulary(data):
+    """Random questions from the vocabulary (kind, reaction or coordinate, start, mode) on two problems."""
+    name = data.draw(st.sampled_from(["ladder", "collar-rod"]))
+    base = _problem_without_questions(name)
+    system, _ = parse_problem(base, f"{name}.toml")
+    sol = system.solve()
+    q = data.draw(st.sampled_from([c.func.__name__ for c in sol.coordinates]))
+    reaction = data.draw(st.sampled_from(sorted(sol.regimes[0].reactions) or ["N"]))
+    mode = data.draw(st.sampled_from(_mode_variants(system)))
+    texts = _questions(system, q, reaction, mode)
+    chosen = data.draw(st.lists(st.sampled_from(texts), min_size=1, max_size=3, unique=True))
+    try:
+        system, spec = parse_problem(base + "\n" + "\n".join(chosen), f"{name}.toml")
+    except RigidkinError:
+        return
+    context = {}
+    for question in spec.questions:
+        check_answer(system, question, context)
