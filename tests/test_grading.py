@@ -61,6 +61,8 @@ LADDER_OK = [
      "claim": "m*g*l/2*sin(theta) - N_A*l*cos(theta) = m*l**2/3*ddot(theta) "
               "- m*l**2/2*cos(theta)*(cos(theta)*ddot(theta) - sin(theta)*dot(theta)**2)"},
     {"kind": "balance", "law": "energy", "claim": "m*l**2/6*dot(theta)**2 + m*g*l/2*cos(theta) = m*g*l/2"},
+    {"kind": "balance", "law": "energy", "question": "leaves_wall",
+     "claim": "m*l**2/6*dot(theta)**2 + m*g*l/2*cos(theta) = m*g*l/2"},
     {"kind": "eom", "claim": "2*l*ddot(theta) = 3*g*sin(theta)"},
     {"kind": "eom", "claim": "-4*l*ddot(theta)/g + 6*sin(theta) = 0"},           # another factor and arrangement
     {"kind": "answer", "question": "leaves_wall", "claim": "acos(2/3)"},
@@ -92,6 +94,8 @@ LADDER_BAD = [
     ({"kind": "eom", "claim": "N_A = 0"}, "free of the unknown reactions"),
     ({"kind": "answer", "question": "leaves_wall", "claim": "acos(1/3)"}, "the answer is acos(2/3)"),
     ({"kind": "answer", "question": "leaves_wall", "claim": "-acos(2/3)"}, "sign"),
+    ({"kind": "balance", "law": "energy", "question": "leaves_wall",          # released from rest upright
+      "claim": "m*l**2/6*dot(theta)**2 + m*g*l/2*cos(theta) = 0"}, "constant: the integral does not hold"),
 ]
 
 

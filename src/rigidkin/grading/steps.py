@@ -191,6 +191,10 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
         if plain_expr.has(*[q.diff(t) for q in ref.solution.coordinates]) or \
                 plain_expr.has(*ref.solution.coordinates):
             notes.append("read as a first integral: graded through its time derivative")
+            wrong = _constant_at_start(ref, st, expr)
+            if wrong:
+                res.feedback = notes + [wrong]
+                return res
             expr = sp.diff(expr, t)
         else:
             res.feedback = ["it contains no acceleration and no unknown reaction, so it cannot be an equation of "
@@ -248,6 +252,26 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
     if st.kind == "balance":
         carried.balances.append((st.index, expr, nearest))
     return res
+
+
+def _constant_at_start(ref: Reference, st: Step, expr) -> str | None:
+    """A first integral's constant, checked at the start state of the question the step names."""
+    if not st.question:
+        return None
+    q = next((q for q in ref.spec_questions() if q.name == st.question), None)
+    start = dict((q.fields.get("start") or {}) if q is not None else {})
+    if not start:
+        return None
+    rates = {k: v for k, v in start.items() if isinstance(k, sp.Derivative)}
+    at = ref.scalar(ref.scalar(expr).xreplace(rates).xreplace(start))
+    if at.has(*ref.solution.coordinates) or at.atoms(sp.Derivative):
+        return None                      # the start does not fix every coordinate and rate
+    vals = ref.sampler.evaluate([space.to_plain(at)])
+    if space.vanishes(vals) is False:
+        shown = ", ".join(f"{text(k)} = {text(v)}" for k, v in start.items())
+        return (f"constant: the integral does not hold at the start of '{st.question}' ({shown}); its value there "
+                f"leaves {text(ref.kin.simplify_expr(at))} ≠ 0")
+    return None
 
 
 def _regime_text(reg, regimes) -> str:
