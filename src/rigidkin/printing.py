@@ -46,6 +46,11 @@ class TextPrinter(StrPrinter):
             return greek(expr.func.__name__)
         return super()._print_Function(expr)
 
+    def _print_Float(self, expr):
+        """A number found numerically, to 10 significant digits (1.28483152, not 1.28483151989612)."""
+        s = format(float(expr), ".10g")
+        return s if any(c in s for c in ".en") else s + ".0"
+
     def _print_Derivative(self, expr):
         f = expr.expr
         if isinstance(f, sp.Function) and isinstance(f.func, sp.core.function.UndefinedFunction) \
