@@ -441,3 +441,16 @@ def test_claim_that_would_expand_hugely_is_graded_quickly():
     rep = graded("ladder", [{"kind": "balance", "claim": "N_A*(m + l + g + theta + dot(theta) + sin(theta) + "
                                                          "cos(theta))**12 = ddot(theta)"}])
     assert rep.steps[0].verdict == "incorrect" and time.perf_counter() - t0 < 60
+
+
+def test_worksheet_mode_rolling(tmp_path):
+    from rigidkin import examples
+
+    card = (examples.HERE / "slip-to-roll.toml").read_text(encoding="utf-8").split("[[ask.question]]")[0]
+    (tmp_path / "slip.toml").write_text(card, encoding="utf-8")
+    # rolling (r φ̇ = ẋ): m ẍ = m g sin β − F, m r²/2 φ̈ = F r → 3/2 ẍ = g sin β
+    text = ('problem = "slip.toml"\nmode = { ground = "stick" }\n[[step]]\nkind = "eom"\n'
+            'claim = "3/2*ddot(x) = g*sin(beta)"\n[[step]]\nkind = "eom"\nclaim = "ddot(x) = g*sin(beta)"\n')
+    rep = grade(parse_worksheet(text, tmp_path / "ws.toml"))
+    assert [s.verdict for s in rep.steps] == ["correct", "incorrect"]
+    assert "rotational inertia missing" in rep.steps[1].feedback[0]

@@ -167,7 +167,8 @@ def _labelled(a) -> list[tuple[str, sp.Expr]]:
     if isinstance(v, sp.Basic):
         if isinstance(v, sp.Eq):
             return [(text(v.lhs), v.rhs)]
-        return [(a.question.name, v)]
+        head = a.text.split(" = ")[0] if " = " in a.text else ""
+        return [(head if 0 < len(head) <= 20 else a.question.name, v)]
     cfg = getattr(v, "configuration", None)
     out = [(text(k), sp.sympify(x)) for k, x in (cfg or {}).items()]
     out += [(f"natural frequency {i + 1}", sp.sympify(x)) for i, x in enumerate(getattr(v, "natural_frequencies", ())
