@@ -269,3 +269,14 @@ def test_an_undecided_comparison_is_said_so_not_called_a_disagreement():
     how = "numeric: only 1 of 24 random states could be evaluated (undecided)"
     assert _status(False, how) == "undecided" and _status(False, "numeric: 24 random states") == "disagrees"
     assert Verdict("lagrange", "θ̈", "undecided", how).failed        # not "All agree" either
+
+
+def test_the_old_inconsistent_spring_is_a_disagreement_said_as_one():
+    """The issue's model (a spring at the top of a rolling disk made conservative through its length):
+    work–energy and Lagrange disagree, and the "how decided" column says they differ (it said "only 1 of
+    24 random states could be evaluated (undecided)" because the first evaluated state already differed)."""
+    system, _ = parse_problem(TOP.replace("ENDS", 'on_a = "disk"'), "top.toml")
+    system.loads["spring"].moving_a = False
+    verdicts = system.solve().check(laws=["work-energy", "lagrange"]).verdicts
+    accel = [v for v in verdicts if v.equation.startswith("θ")]
+    assert accel and all(v.status == "disagrees" and "differ" in v.how for v in accel)

@@ -179,7 +179,7 @@ def _numeric_compare(a, b, n: int = SAMPLES, seed: int = 3, rtol: float = RTOL) 
                 continue
             used += 1
             if abs(va - vb) > rtol * max(1.0, abs(va), abs(vb)):
-                return False, used
+                return False, -used          # a definite difference, found at the used-th state
     return used >= MIN_SAMPLES, used
 
 
@@ -195,6 +195,8 @@ def compare(a, b) -> tuple[bool, str]:
         except (RecursionError, NotImplementedError, sp.PolynomialError):
             pass
     ok, used = _numeric_compare(a, b)
+    if used < 0:
+        return False, f"numeric: they differ at a random state (state {-used} of those evaluated)"
     if used < MIN_SAMPLES:
         return False, f"numeric: only {used} of {SAMPLES} random states could be evaluated (undecided)"
     return ok, f"numeric: {used} random states and parameter sets, rel. tol. {RTOL:g}"
