@@ -255,3 +255,22 @@ def test_hypothesis_questions_over_the_vocabulary(data):
     context = {}
     for question in spec.questions:
         check_answer(system, question, context)
+
+
+def test_value_at_rest_on_a_rough_incline_is_a_legal_start():
+    """At rest on the rough incline no slip starts (µ = 0.4 > tan β / 3): the cylinder rolls from rest, so the
+    friction is the one rolling needs, F = m g sin β / 3 (its magnitude), and N = m g cos β."""
+    base = _problem_without_questions("slip-to-roll")
+    text = base + '''
+[[ask.question]]
+kind = "value"
+name = "friction"
+expression = "F"
+at = { x = 0, "dot(x)" = 0, phi = 0, "dot(phi)" = 0 }
+'''
+    system, spec = parse_problem(text, "slip-to-roll.toml")
+    a = answer(system, spec.questions[0], {})
+    m, g, beta = (system.parameter_info[n].symbol for n in ("m", "g", "beta"))
+    assert sp.simplify(abs(a.value) - m * g * sp.sin(beta) / 3) == 0 or \
+        sp.simplify(a.value**2 - (m * g * sp.sin(beta) / 3) ** 2) == 0
+    assert "stick" in a.note

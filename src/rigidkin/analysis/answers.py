@@ -14,7 +14,7 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from .. import algebra
-from ..errors import InputError, RigidkinError
+from ..errors import InputError, RegimeError, RigidkinError
 from ..printing import text
 from ..solution import repeatable
 from .equilibrium import equilibria
@@ -241,13 +241,33 @@ def _phases(system, question, f, context):
 def _value(system, question, f, context):
     sol = _solution(system, f)
     at = _start({"start": f.get("at"), "after": f.get("after")}, context)
-    regime = sol.regime_at(at) if len(sol.regimes) > 1 else sol.regimes[0]
+    note = ""
+    try:
+        regime = sol.regime_at(at) if len(sol.regimes) > 1 else sol.regimes[0]
+    except RegimeError:
+        if f.get("mode"):
+            raise
+        # no slip starts from this state: the sliding contacts stick, if their friction can hold them
+        stick = {k: "stick" for k, v in sol.states.items() if v == "slip"}
+        sol = system.solve(mode={**dict(sol.states), **stick}, substitutions=dict(f.get("set") or {}))
+        regime = sol.regimes[0]
+        note = f"at rest relative to {', '.join(stick)}: sticking (no slip starts from this state)"
+        values = {**numeric_values_from(system)}
+        for cond in regime.validity:
+            try:
+                v = _num(cond.expr.xreplace({k: x for k, x in at.items() if isinstance(k, sp.Derivative)})
+                         .xreplace({k: x for k, x in at.items() if not isinstance(k, sp.Derivative)}), values)
+            except (TypeError, ValueError):
+                continue                  # not a number at this state (a coordinate not given)
+            if v == v and not cond.holds(v, 1e-9):
+                raise RigidkinError(f"at this state no slip starts, yet {cond.label} fails "
+                                    f"({text(cond.expr)} = {v:.4g}): the friction cannot hold the contact.") from None
     expr = condition_expression(sol, f["expression"], regime)
     expr = expr.xreplace({q.diff(t, 2): a for q, a in regime.accelerations.items()})
     rates = {k: v for k, v in at.items() if isinstance(k, sp.Derivative)}
     value = algebra.readable(sp.sympify(expr).xreplace(rates).xreplace(
         {k: v for k, v in at.items() if not isinstance(k, sp.Derivative)}))
-    return Answer(question, value, f"{text(f['expression'])} = {text(value)}{_reading(value, system)}")
+    return Answer(question, value, f"{text(f['expression'])} = {text(value)}{_reading(value, system)}", note=note)
 
 
 def _impulse(system, question, f, context):
