@@ -8,14 +8,20 @@ Skipped, with the reason, where Chromium (Debian's ``chromium``) or Playwright i
 
 from __future__ import annotations
 
+import io
 import shutil
 import tempfile
 from pathlib import Path
 
+import numpy as np
 import pytest
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
 
 from rigidkin.cli import main
 from rigidkin.report import REPORT_SECTIONS
+from rigidkin.report.html import CSP_NO_SCRIPT, STYLE, math_font_css
+from rigidkin.report.notation import mathml
 
 ROOT = Path(__file__).resolve().parents[1]
 ARTIFACTS = ROOT / "test-artifacts"
@@ -95,3 +101,103 @@ def test_ladder_report_in_chromium(ladder_page):
     assert requests == [], f"the page tried to reach: {requests}"
     errors = [c for c in console if c[0] in ("error", "pageerror", "warning")]
     assert errors == [], errors
+
+
+# accents drawn above their letters ----------------------------------------------------------------
+_t = dynamicsymbols._t
+_theta, _theta1 = dynamicsymbols("theta theta1")
+#: (plain, accented, marks expected above the letter) — each pair printed by the report's own MathML
+ACCENT_PAIRS = {
+    "dot": (_theta, _theta.diff(_t), 1),
+    "ddot": (_theta, _theta.diff(_t, 2), 2),
+    "hat": (sp.Symbol("e"), sp.Symbol("e_hat"), 1),
+    "bar": (sp.Symbol("x"), sp.Symbol("x_bar"), 1),
+    "dot1": (_theta1, _theta1.diff(_t), 1),
+}
+
+
+def _accent_page(size_px: int) -> str:
+    rows = "".join(f'<p id="{k}"><span class="plain">{mathml(a)}</span> <span class="acc">{mathml(b)}</span></p>'
+                   for k, (a, b, _) in ACCENT_PAIRS.items())
+    return ('<!DOCTYPE html><html><head><meta charset="utf-8">'
+            f'<meta http-equiv="Content-Security-Policy" content="{CSP_NO_SCRIPT}">'
+            f"<style>{math_font_css()}{STYLE} p {{ font-size: {size_px}px; margin: .2em 1em; }}</style></head>"
+            f"<body>{rows}</body></html>")
+
+
+def _runs(flags) -> list[tuple[int, int]]:
+    """Runs of consecutive True entries as (first, last) indices."""
+    out, start = [], None
+    for i, f in enumerate(list(flags) + [False]):
+        if f and start is None:
+            start = i
+        elif not f and start is not None:
+            out.append((start, i - 1))
+            start = None
+    return out
+
+
+def _ink(png: bytes) -> np.ndarray:
+    from PIL import Image
+    img = np.asarray(Image.open(io.BytesIO(png)).convert("L"), dtype=float)
+    return img < 140
+
+
+def accent_shots(html: str, artifact: str | None = None) -> dict:
+    """For each pair: the ink of its line (as rendered by Chromium) and the columns of the two symbols."""
+    with playwright.sync_playwright() as p, tempfile.TemporaryDirectory() as profile:
+        ctx = p.chromium.launch_persistent_context(profile, executable_path=CHROMIUM, headless=True, args=FLAGS,
+                                                   viewport={"width": 700, "height": 900})
+        try:
+            page = ctx.new_page()
+            console = []
+            page.on("console", lambda m: console.append((m.type, m.text)))
+            page.set_content(html, wait_until="load")
+            page.evaluate("document.fonts.ready")
+            fonts = page.evaluate("[...document.fonts].filter(f => f.status === 'loaded').map(f => f.family)")
+            if artifact:
+                page.screenshot(path=str(ARTIFACTS / artifact))
+            shots = {}
+            for key in ACCENT_PAIRS:
+                row = page.locator(f"p#{key}")
+                box = row.bounding_box()
+                plain = page.locator(f"p#{key} .plain math").bounding_box()
+                acc = page.locator(f"p#{key} .acc math").bounding_box()
+                shots[key] = (_ink(row.screenshot()), [int(round(b["x"] - box["x"])) for b in (plain, acc)],
+                              [int(round(b["x"] + b["width"] - box["x"])) for b in (plain, acc)])
+        finally:
+            ctx.close()
+    assert not [c for c in console if c[0] in ("error", "warning")], console
+    return {"fonts": fonts, "shots": shots}
+
+
+def check_marks_above(shots: dict) -> None:
+    """Above the letter's top (the plain letter's, on the same baseline) there is ink, separated from the
+    letter by blank rows; θ̈ has two dots side by side; θ̇₁'s dot stands over the θ, not the subscript."""
+    for key, (ink, x0, x1) in shots.items():
+        marks = ACCENT_PAIRS[key][2]
+        plain, acc = ink[:, x0[0]:x1[0]], ink[:, x0[1]:x1[1]]
+        plain_rows = _runs(plain.any(axis=1))
+        acc_rows = _runs(acc.any(axis=1))
+        assert len(plain_rows) >= 1, key
+        letter_top = plain_rows[0][0]
+        assert len(acc_rows) >= 2, (key, acc_rows)                 # a mark, blank rows, then the letter
+        mark = acc_rows[0]
+        assert mark[1] < letter_top - 1, (key, mark, letter_top)   # wholly above the plain letter's top
+        assert abs(acc_rows[1][0] - letter_top) <= 2, (key, acc_rows, letter_top)   # the letter where it was
+        mark_cols = _runs(acc[mark[0]:mark[1] + 1].any(axis=0))
+        assert len(mark_cols) == marks, (key, mark_cols)
+        if key == "dot1":       # over the θ, left of the whole symbol's middle (the subscript is right)
+            cols = np.nonzero(acc.any(axis=0))[0]
+            centre = (mark_cols[0][0] + mark_cols[-1][1]) / 2
+            assert centre < (cols[0] + cols[-1]) / 2, (mark_cols, cols[0], cols[-1])
+
+
+def test_accents_are_marks_above_their_letters():
+    """θ̇, θ̈, ê, x̄ and θ̇₁ as the report writes them, in Chromium with the page's embedded math font:
+    each accent a separate mark above its letter (in the pixels), at 64 px; a 17 px page is kept to look at."""
+    ARTIFACTS.mkdir(exist_ok=True)
+    big = accent_shots(_accent_page(64), "accents-64px.png")
+    assert "RigidkinMath" in " ".join(big["fonts"]), big["fonts"]
+    check_marks_above(big["shots"])
+    accent_shots(_accent_page(17), "accents-17px.png")

@@ -12,14 +12,18 @@ from __future__ import annotations
 
 import base64
 import re
+from functools import cache
+from importlib import resources
 
 from ..textsafe import html_text
 from .document import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
 from .notation import mathml, mathml_condition
 
-CSP = "default-src 'none'; img-src data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'"
+CSP = "default-src 'none'; img-src data:; font-src data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'"
 #: The policy of a page without an animation: no script at all.
-CSP_NO_SCRIPT = "default-src 'none'; img-src data:; style-src 'unsafe-inline'"
+CSP_NO_SCRIPT = "default-src 'none'; img-src data:; font-src data:; style-src 'unsafe-inline'"
+#: The math font the page embeds (a subset of STIX Two Math, OFL; see report/assets/README.md).
+MATH_FONT = "STIXTwoMath-subset.woff2"
 
 STYLE = """
 body { font-family: "DejaVu Serif", Georgia, serif; margin: 0; color: #1b1b1b; background: #fafafa; }
@@ -40,6 +44,7 @@ h3 { font-size: 1.05em; margin: 1.1em 0 .3em 0; }
 .eqs { overflow-x: auto; }
 math[display="block"] { margin: .35em 0; font-size: 1.08em; }
 td math { font-size: 1.1em; }
+math { font-family: "RigidkinMath", math; }
 table { border-collapse: collapse; margin: .8em 0; font-size: .95em; }
 caption { text-align: left; font-weight: bold; padding: .3em 0; }
 th, td { border: 1px solid #d4d4d4; padding: .3em .6em; vertical-align: top; text-align: left; }
@@ -63,6 +68,18 @@ def offline_player(player: str) -> str:
     for cls, ch in _ICONS.items():
         player = player.replace(f'<i class="fa {cls}"></i>', f'<span class="icon">{ch}</span>')
     return player
+
+
+@cache
+def math_font_css() -> str:
+    """An ``@font-face`` rule that embeds the bundled math font as a ``data:`` URI.
+
+    Browsers place an accent (θ̇, θ̈, x̂, x̄) above its letter by the font's OpenType MATH table; with
+    no math font installed, Chromium draws the dots into the letter or not at all.
+    """
+    data = resources.files("rigidkin.report").joinpath("assets", MATH_FONT).read_bytes()
+    b64 = base64.b64encode(data).decode("ascii")
+    return f'@font-face {{ font-family: "RigidkinMath"; src: url(data:font/woff2;base64,{b64}) format("woff2"); }}'
 
 
 def _esc(s: str) -> str:
@@ -116,6 +133,6 @@ def to_html(doc: Document) -> str:
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             f'<meta http-equiv="Content-Security-Policy" content="{CSP if scripts else CSP_NO_SCRIPT}">'
             '<meta name="viewport" content="width=device-width, initial-scale=1">'
-            f"<title>{_esc(doc.title)}</title><style>{STYLE}</style></head>\n<body>"
+            f"<title>{_esc(doc.title)}</title><style>{math_font_css()}{STYLE}</style></head>\n<body>"
             f'<header><h1>{_esc(doc.title)}</h1><p class="subtitle">{_esc(doc.subtitle)}</p><nav>{nav}</nav></header>'
             f"<main>\n" + "\n".join(body) + "\n</main></body></html>\n")

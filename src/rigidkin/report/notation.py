@@ -30,6 +30,8 @@ _GREEK_UNICODE = set(GREEK.values())
 _LATEX_GREEK = {v: "\\" + ("mu" if k == "mu" else "lambda" if k == "lamda" else k) for k, v in GREEK.items()}
 _LATEX_GREEK["µ"] = r"\mu"
 _DOT_CHARS = {1: "\u02d9", 2: "\u00a8"}
+#: Name suffixes that put an accent over the symbol (``e_hat`` → ê, ``x_bar`` → x̄), as MathML marks.
+ACCENT_SUFFIXES = {"hat": "^", "bar": "\u00af"}
 _RELATIONS = {">": ">", "<": "<", ">=": "≥", "<=": "≤", "=": "="}
 _LATEX_RELATIONS = {">": ">", "<": "<", ">=": r"\geq", "<=": r"\leq", "=": "="}
 
@@ -151,7 +153,25 @@ class MathMLPrinter(MathMLPresentationPrinter):
             e.appendChild(c)
         return e
 
+    def accent(self, base: Element, mark: str) -> Element:
+        """``mark`` drawn above ``base`` — above a subscripted symbol's letter, not its subscript (θ̇₁).
+
+        Laid out as an over-script at the letter's own size (``math-depth: add(0)``), not as a MathML
+        accent: an accent sits on the letter's top and merges into a tall letter (θ̇ drawn as θ), an
+        over-script keeps the math font's gap.  The mark is not stretchy: Chromium draws a stretchy
+        bar at no width.  Tested in pixels in tests/test_report_browser.py.
+        """
+        if base.tagName in ("msub", "msubsup") and base.firstChild is not None:
+            letter = base.firstChild
+            base.replaceChild(self.accent(letter.cloneNode(True), mark), letter)
+            return base
+        return self._el("mover", base, self._el("mo", text=mark, stretchy="false", style="math-depth:add(0)"),
+                        accent="false")
+
     def _name(self, name: str) -> Element:
+        head, sep, suffix = name.rpartition("_")
+        if sep and head and suffix in ACCENT_SUFFIXES:
+            return self.accent(self._name(head), ACCENT_SUFFIXES[suffix])
         text, symbol = split_label(name)
         words_after = ""
         if "\0" in symbol:
@@ -186,7 +206,7 @@ class MathMLPrinter(MathMLPresentationPrinter):
             order = sum(c for _, c in e.variable_count)
             base = self._name(f.func.__name__)
             if order in _DOT_CHARS:
-                return self._el("mover", base, self._el("mo", text=_DOT_CHARS[order]), accent="true")
+                return self.accent(base, _DOT_CHARS[order])
             return self._el("msup", base, self._el("mrow", self._el("mo", text="("), self._el("mn", text=str(order)),
                                                     self._el("mo", text=")")))
         return super()._print_Derivative(e)
@@ -319,6 +339,9 @@ class LatexPrinter(VectorLatexPrinter):
         return super()._print_Symbol(sp.Symbol(name)) if _plain(name) else rf"\text{{{_latex_text(name)}}}"
 
     def _print_Symbol(self, expr, style="plain"):
+        head, sep, suffix = expr.name.rpartition("_")
+        if sep and head and suffix in ACCENT_SUFFIXES:
+            return rf"\{suffix}{{{self._print_Symbol(sp.Symbol(head))}}}"
         text, symbol = split_label(expr.name)
         if not text:
             return self._symbol(expr.name)
