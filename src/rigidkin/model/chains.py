@@ -3,13 +3,12 @@
 sympy finds the direction cosine matrix (DCM) of a frame relative to a distant one by multiplying the
 matrices along the path between them, without simplifying: for n frames each turned about the same
 axis (a planar chain of links) the entries of the product have 2ⁿ⁻¹ terms, and the kinematics of a
-60-link chain never finishes.  :func:`remember` is called when a frame is oriented and stores, in
-sympy's own cache, the DCM of the new frame relative to every frame it hangs from:
+60-link chain never finishes.  :func:`remember` is called when a frame is oriented; it then stores, in
+sympy's own cache, on first use, the DCM of the frame relative to any frame it hangs from:
 
 * in closed form, a rotation about the common axis by the sum of the angles, along a run of frames
   turned about the same axis (cos(θ₁ + θ₂) instead of cos θ₁ cos θ₂ − sin θ₁ sin θ₂);
-* otherwise as the product of the new frame's own DCM and its parent's stored one (one product per
-  pair of frames, not one per step of the path).
+* otherwise as the product of the frame's own DCM and its parent's (found the same way, and stored).
 
 :func:`shallow` writes a vector given along a frame deep in a chain in the inertial frame.
 """
@@ -44,22 +43,64 @@ def _axis_dcm(u, angle) -> sp.ImmutableMatrix:
     return sp.ImmutableMatrix(rows)
 
 
+class _ChainCache(dict):
+    """A frame's DCM cache that also answers, on first use, for any frame along its chain of parents
+    (sympy asks ``other in frame._dcm_cache`` before multiplying along the path)."""
+
+    def __init__(self, ref: ReferenceFrame, entries: dict):
+        super().__init__(entries)
+        self.ref = ref
+
+    def __contains__(self, other) -> bool:
+        if dict.__contains__(self, other):
+            return True
+        dcm = _along_chain(self.ref, other)
+        if dcm is None:
+            return False
+        self[other] = dcm
+        other._dcm_cache[self.ref] = dcm.T
+        return True
+
+
+def _hangs_from(ref: ReferenceFrame, other: ReferenceFrame) -> list | None:
+    """The frames from ``ref`` up to (not including) ``other`` when ``ref`` hangs from ``other``, else None."""
+    path, cur = [], ref
+    while cur is not other and getattr(cur, "_rigidkin_link", None) is not None:
+        path.append(cur)
+        cur = cur._rigidkin_link[0]
+    return path if cur is other else None
+
+
+def _along_chain(ref: ReferenceFrame, other: ReferenceFrame):
+    """``ref.dcm(other)`` when one of the two hangs from the other, two or more steps apart (None otherwise)."""
+    path = _hangs_from(ref, other)
+    if path is None:
+        back = _hangs_from(other, ref)
+        if back is None or len(back) < 2:
+            return None
+        return _down(other, ref, back).T
+    return None if len(path) < 2 else _down(ref, other, path)
+
+
+def _down(ref: ReferenceFrame, other: ReferenceFrame, path: list):
+    parent, axis_col, angle = ref._rigidkin_link
+    total = angle
+    for frame in path[1:]:                            # a run of rotations about the same axis: one rotation
+        u, a = frame._rigidkin_link[1:]
+        if axis_col is None or u is None or u != axis_col:
+            return ref.dcm(parent) * parent.dcm(other)   # the parent's DCM to ``other`` is found the same way
+        total = total + a
+    return _axis_dcm(axis_col, total)
+
+
 def remember(ref: ReferenceFrame, parent: ReferenceFrame, axis_col: sp.Matrix | None, angle) -> None:
-    """Store the DCM of ``ref`` (just oriented from ``parent``; about ``axis_col`` by ``angle``, or
-    None for another kind of rotation) relative to every frame ``parent`` hangs from."""
+    """Note that ``ref`` was just oriented from ``parent`` (about the unit axis ``axis_col``, parent
+    components, by ``angle``; None for another kind of rotation): its DCM relative to any frame it
+    hangs from is then found along the chain, in closed form where the chain turns about one axis."""
     ref._rigidkin_link = (parent, axis_col, angle)
-    own = ref.dcm(parent)
-    total, same_axis = angle, axis_col is not None
-    child = parent
-    while getattr(child, "_rigidkin_link", None) is not None:
-        up, u, a = child._rigidkin_link
-        same_axis = same_axis and u is not None and u == axis_col
-        if same_axis:
-            total = total + a
-        dcm = _axis_dcm(axis_col, total) if same_axis else own * parent.dcm(up)
-        ref._dcm_cache[up] = dcm
-        up._dcm_cache[ref] = dcm.T
-        child = up
+    for frame in (ref, parent):
+        if not isinstance(frame._dcm_cache, _ChainCache):
+            frame._dcm_cache = _ChainCache(frame, frame._dcm_cache)
 
 
 def depth(ref: ReferenceFrame) -> int:
