@@ -25,12 +25,40 @@ _SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 _DOTS = {1: "\u0307", 2: "\u0308"}
 
 
+_SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+_INDEXED = re.compile(r"([^\W\d_]+?)(\d+)")       # a letter or a Greek name, then its index: theta1, x2
+
+
+def _letter_index(head: str) -> tuple[str, str]:
+    """(letter, index) of a symbol's head: ``theta1`` → (theta, 1), ``x`` → (x, ""); ("", "") for a word (``xA``)."""
+    if head in GREEK or (len(head) == 1 and head.isalpha()):
+        return head, ""
+    m = _INDEXED.fullmatch(head)
+    if m and (m.group(1) in GREEK or len(m.group(1)) == 1):
+        return m.group(1), m.group(2)
+    return "", ""
+
+
 def greek(name: str) -> str:
-    """``theta_1`` → ``θ_1``; ``F_hat`` → ``F̂``."""
+    """``theta_1`` → ``θ_1``; ``theta1`` → ``θ₁``; ``x2`` → ``x₂``; ``F_hat`` → ``F̂``."""
     head, sep, tail = name.partition("_")
     if tail == "hat":
         return greek(head) + "\u0302"
+    letter, index = _letter_index(head)
+    if index:
+        return GREEK.get(letter, letter) + index.translate(_SUB) + sep + tail
     return GREEK.get(head, head) + sep + tail
+
+
+def dotted(name: str, order: int) -> str:
+    """A coordinate's rate with its dots over the symbol's letter: ``theta`` → θ̇, ``theta1`` → θ̇₁,
+    ``x_B`` → ẍ_B (order 2), ``phi2`` → φ̇₂; ``dot(xA)`` / ``ddot(xA)`` where the name has no one letter
+    to carry them."""
+    head, sep, tail = name.partition("_")
+    letter, index = _letter_index(head)
+    if not letter:
+        return f"{'d' * (order - 1)}dot({greek(name)})"
+    return GREEK.get(letter, letter) + _DOTS[order] + index.translate(_SUB) + sep + tail
 
 
 class TextPrinter(StrPrinter):
@@ -56,10 +84,9 @@ class TextPrinter(StrPrinter):
         if isinstance(f, sp.Function) and isinstance(f.func, sp.core.function.UndefinedFunction) \
                 and f.args == (t,) and all(v == t for v, _ in expr.variable_count):
             order = sum(c for _, c in expr.variable_count)
-            name = greek(f.func.__name__)
-            if order in _DOTS and len(name) >= 1:
-                return name[0] + _DOTS[order] + name[1:]
-            return f"{name}⁽{str(order).translate(_SUP)}⁾"
+            if order in _DOTS:
+                return dotted(f.func.__name__, order)
+            return f"{greek(f.func.__name__)}⁽{str(order).translate(_SUP)}⁾"
         return super()._print_Derivative(expr)
 
 
