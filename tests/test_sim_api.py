@@ -83,7 +83,7 @@ def test_initial_rates_that_separate_a_contact_start_it_open(ladder):
 
 
 def test_outputs_csv_json_plot_and_dense_state(ladder, tmp_path):
-    r = simulate(ladder, 6.0, n_points=301)
+    r = simulate(ladder, 6.0, n_points=301, initial_state={"theta": 1e-6, "dot(theta)": 0.0})   # card (b): upright
     text = r.to_csv(tmp_path / "h.csv")
     head = text.splitlines()[0].split(",")
     assert head[:6] == ["t", "mode", "theta", "x", "dot(theta)", "dot(x)"]

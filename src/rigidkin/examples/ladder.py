@@ -18,7 +18,7 @@ def build() -> rk.System:
     l = s.parameter("l", "m", "length of the rod", value=2)
     g = s.parameter("g", "m/s^2", "gravitational acceleration", value=9.81)
     theta = s.coordinate("theta", "angle between the rod and the wall, from the upward vertical, positive "
-                                  "as the foot moves away from the wall", initial=1e-6, rate=0)
+                                  "as the foot moves away from the wall", initial=0.3, rate=0)
     x = s.coordinate("x", "distance of the foot B from the wall, along Ex", kind="length")
     F = s.inertial
     R = s.frame("R", angle=theta, basis=("ex", "ey", "ez"), description="fixed in the rod; ey from B to A")

@@ -15,7 +15,7 @@ def build() -> rk.System:
     K = s.parameter("K", "N*m/rad", "torsional spring constant", value=20)
     F_hat = s.parameter("F_hat", "N*s", "impulse at the lower end", value=1)
     theta = s.coordinate("theta", "angle of the rod from its hanging position, counter-clockwise",
-                         initial=0, rate=0)
+                         initial=0.5, rate=0)
     R = s.frame("R", angle=theta, description="fixed in the rod; -Ry towards the lower end B")
     rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=s.origin)
     B = s.point("B", s.origin, -l / 2 * R.y, body=rod, description="lower end, where the impulse acts")

@@ -18,7 +18,7 @@ def build() -> rk.System:
     R = s.parameter("R", "m", "radius of the fixed sphere", value=1)
     g = s.parameter("g", "m/s^2", "gravitational acceleration", value=9.81)
     theta = s.coordinate("theta", "absolute rotation of the rolling sphere, clockwise, zero on top",
-                         initial=1e-6, rate=0)
+                         initial=1.1, rate=0)
     phi = s.coordinate("phi", "angle of the line of centres OC from the upward vertical, clockwise")
     rho = s.coordinate("rho", "distance OC between the centres", kind="length", positive=True)
     A = s.frame("A", angle=-phi, basis=("et", "er", "ez"), description="er along the line of centres OC")
