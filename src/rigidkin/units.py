@@ -279,6 +279,9 @@ def parse_quantity(value: float | int | str, unit: str | None = None, where: str
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         raise InputError(f"expected a number or a quantity string such as '30 deg', not {type(value).__name__}.",
                          where=where, hint=_QTY_HINT)
+    if isinstance(value, str) and value.strip().lower().lstrip("+-") in ("nan", "inf", "infinity"):
+        raise InputError(f"the quantity '{_shown(value)}' is not a finite number.", where=where,
+                         hint="Give a finite value, e.g. 9.81 or '30 deg'.")
     unit_text = None if unit is None or str(unit).strip() in ("", "1", "-") else _screen(unit, where)
     target = None if unit_text is None else unit_dimension(unit, where)
     try:

@@ -22,7 +22,7 @@ from sympy.physics.vector import Vector
 
 from ..analysis.questions import Question
 from ..errors import InputError, ModelError, RigidkinError
-from ..model.checks import POSITIVE, REAL, check_problem_name, generated_clash, problem_name, require
+from ..model.checks import NONNEGATIVE, REAL, check_problem_name, generated_clash, problem_name, require
 from ..model.constraints import Contact
 from ..model.loads import V as DAMPER_SPEED
 from ..model.shapes import SHAPES
@@ -697,8 +697,9 @@ class _Builder:
             info = self.s.parameter_info[pname]
             where = self.where(*path, pname)
             value = self.value(v, path + (pname,), info.dimension if info.unit or info.dimension != ONE else None)
-            out[sym] = require(value, POSITIVE if sym.is_positive else REAL, f"value of the parameter {pname}", where,
-                               self.s.parameter_values(), InputError)
+            # zero is allowed for a positive parameter here: a limiting case (µ = 0 on a frictionless stretch)
+            out[sym] = require(value, NONNEGATIVE if sym.is_positive else REAL, f"value of the parameter {pname}",
+                               where, self.s.parameter_values(), InputError)
         return out
 
     def questions(self, ask: S.AskSpec) -> tuple[Question, ...]:

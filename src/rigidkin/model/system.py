@@ -580,7 +580,7 @@ class System:
 
         for sym, value in (substitutions or {}).items():
             if isinstance(value, (int, float, sp.Basic)) and not isinstance(value, bool):
-                require(value, POSITIVE if getattr(sym, "is_positive", False) else REAL, f"value given for {sym}",
+                require(value, NONNEGATIVE if getattr(sym, "is_positive", False) else REAL, f"value given for {sym}",
                         "solve(substitutions=...)", self.parameter_values())
         return solve_with(self, method, mode=mode or {}, independent=independent,
                           substitutions=substitutions or {}, integrate=integrate)
