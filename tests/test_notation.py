@@ -45,6 +45,12 @@ def test_text_dots_sit_over_the_letter(name, plain, one, two):
         assert marks in ([], [1]), s
 
 
+def test_state_rate_keys_read_with_dots():
+    """An event's state in a report's table: dot(theta) = 2.16 reads θ̇ = 2.16."""
+    assert _nfd(greek("dot(theta)")) == _nfd("θ̇") and _nfd(greek("dot(theta1)")) == _nfd("θ̇₁")
+    assert _nfd(greek("ddot(x_B)")) == _nfd("ẍ_B") and greek("dot(xA)") == "dot(xA)"
+
+
 def _nfd(s: str) -> str:
     return unicodedata.normalize("NFD", s)
 

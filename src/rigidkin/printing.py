@@ -26,6 +26,7 @@ _DOTS = {1: "\u0307", 2: "\u0308"}
 
 
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+_RATE_KEY = re.compile(r"(d?)dot\((\w+)\)")         # a state's rate: dot(theta), ddot(x)
 _INDEXED = re.compile(r"([^\W\d_]+?)(\d+)")       # a letter or a Greek name, then its index: theta1, x2
 
 
@@ -40,7 +41,11 @@ def _letter_index(head: str) -> tuple[str, str]:
 
 
 def greek(name: str) -> str:
-    """``theta_1`` → ``θ_1``; ``theta1`` → ``θ₁``; ``x2`` → ``x₂``; ``F_hat`` → ``F̂``."""
+    """``theta_1`` → ``θ_1``; ``theta1`` → ``θ₁``; ``x2`` → ``x₂``; ``F_hat`` → ``F̂``; a state's rate
+    ``dot(theta)`` → ``θ̇``."""
+    rate = _RATE_KEY.fullmatch(name)
+    if rate:
+        return dotted(rate.group(2), 1 + len(rate.group(1)))
     head, sep, tail = name.partition("_")
     if tail == "hat":
         return greek(head) + "\u0302"
