@@ -23,7 +23,7 @@ def register(sub) -> None:
     p.add_argument("--method", default="newton-euler", help="the reference law (default: newton-euler)")
     p.add_argument("--laws", default=None, metavar="LIST",
                    help="comma-separated laws to compare (default: every law that may apply)")
-    p.add_argument("--mode", action="append", default=[], metavar="CONTACT=STATE",
+    p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="the state of a contact: open, slip or stick (repeatable)")
     p.add_argument("--no-dimensions", action="store_true", help="skip the dimensional analysis")
     p.add_argument("--format", default="text", choices=("text", "json"), help="output format")

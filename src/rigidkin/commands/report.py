@@ -22,14 +22,14 @@ def register(sub) -> None:
     p.add_argument("-o", "--output", required=True, help="output file: .html, .md or .tex")
     p.add_argument("--simulate", type=end_time, metavar="T", help="simulate from t = 0 to T seconds and show it")
     p.add_argument("--method", default="newton-euler", help="the balance law (default newton-euler)")
-    p.add_argument("--mode", action="append", default=[], metavar="CONTACT=STATE",
+    p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="state of a contact (open, slip, stick) for the derivation")
-    p.add_argument("--at", action="append", default=[], metavar="NAME=VALUE",
+    p.add_argument("--at", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="coordinate value of the configuration the free-body diagrams show (default: initial)")
     p.add_argument("--gif", metavar="PATH", help="also write the animation as a GIF (needs --simulate)")
-    p.add_argument("--initial", action="append", default=[], metavar="NAME=VALUE",
+    p.add_argument("--initial", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="initial coordinate or rate for the simulation (theta=0.1, dot(theta)=0; units allowed)")
-    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+    p.add_argument("--set", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="parameter value for the simulation and the figures (units allowed: beta=30 deg)")
     p.add_argument("--no-figures", action="store_true", help="leave out the figures and the animation")
     p.add_argument("--no-animation", action="store_true", help="leave out the animation")

@@ -18,7 +18,7 @@ def register(sub) -> None:
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name")
     p.add_argument("--count", type=int, default=5, help="how many variants (default 5, at most 200)")
     p.add_argument("--seed", type=int, default=1, help="the seed of the values drawn (default 1)")
-    p.add_argument("--vary", action="append", default=[], metavar="NAME=LOW:HIGH",
+    p.add_argument("--vary", nargs="+", action="extend", default=[], metavar="NAME=LOW:HIGH",
                    help="the range of a parameter, in its declared unit or with a unit (repeatable; default: every "
                         "parameter with a value except accelerations such as g, within ±20%%)")
     p.add_argument("--tolerance", type=float, default=0.01, help="relative tolerance of the keys (default 0.01)")
