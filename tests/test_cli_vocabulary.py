@@ -58,3 +58,23 @@ def test_variants_vary_in_both_forms(capsys):
 def test_simulate_set_both_forms(argv, capsys):
     assert main(["simulate", "rod-impulse", "--t-end", "0.2", "--json", "--points", "5", *argv]) == 0
     json.loads(capsys.readouterr().out)
+
+
+def test_sweep_stops_at_the_event_simulate_names(capsys, tmp_path):
+    """simulate --json names the wall leaving 'contact A opens'; sweep --stop-at takes that name as well as N_A."""
+    assert main(["simulate", "ladder", "--t-end", "2", "--json", "--points", "5"]) == 0
+    name = json.loads(capsys.readouterr().out)["events"][0]["name"]
+    assert name == "contact A opens"
+    outs = []
+    for i, stop in enumerate((name, "N_A")):
+        out = tmp_path / f"s{i}.csv"
+        assert main(["sweep", "ladder", "--param", "theta=0.2:0.4:2", "--stop-at", stop, "--t-end", "3",
+                     "-o", str(out)]) == 0, capsys.readouterr().err
+        outs.append(out.read_text())
+    assert outs[0] == outs[1] and "N_A: t" in outs[0]
+    import numpy as np
+
+    from rigidkin.examples import build
+    from rigidkin.numeric.sweep import sweep
+    res = sweep(build("ladder"), {"theta": [0.2, 0.4]}, stop_at="contact A opens", record=["N_A"], t_end=3.0)
+    assert np.allclose(np.cos(res.event_state("N_A", "theta")) / np.cos([0.2, 0.4]), 2 / 3, rtol=1e-8)

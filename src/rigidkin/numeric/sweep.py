@@ -157,9 +157,19 @@ def axis(spec) -> np.ndarray:
     return arr
 
 
-def stop_event(layout: StateLayout, k: Kernel, spec: str, terminal: bool = True) -> StopAt:
-    """``N_A`` (a reaction reaching zero), or ``theta=1.2`` / ``dot(theta)=0`` (a state value)."""
+def event_aliases(system, mode) -> dict[str, str]:
+    """The names simulate gives contacts' events (``contact A opens``) → the reaction that reaches zero (``N_A``)."""
+    from ..mode import setup_mode
+
+    return {f"contact {row.constraint} opens": str(r) for r, row in setup_mode(system, mode).unilateral}
+
+
+def stop_event(layout: StateLayout, k: Kernel, spec: str, terminal: bool = True,
+               aliases: Mapping[str, str] | None = None) -> StopAt:
+    """``N_A`` or ``contact A opens`` (a reaction reaching zero, by its name or the event's name in
+    simulate's output), or ``theta=1.2`` / ``dot(theta)=0`` (a state value)."""
     spec = str(spec).strip()
+    spec = (aliases or {}).get(spec, spec)
     if "=" in spec:
         name, _, value = spec.partition("=")
         name = name.strip()
@@ -171,7 +181,8 @@ def stop_event(layout: StateLayout, k: Kernel, spec: str, terminal: bool = True)
     if spec in k.output_names:
         return StopAt(spec, None, -1, terminal)
     raise InputError(f"'{spec}' is not an event of this model.", where="stop-at",
-                     hint=f"Use a reaction ({', '.join(k.output_names) or 'none'}) reaching zero, or "
+                     hint=f"Use a reaction ({', '.join(k.output_names) or 'none'}) reaching zero"
+                          f"{' or its event (' + ', '.join(aliases) + ')' if aliases else ''}, or "
                           f"NAME=VALUE with a coordinate or rate ({', '.join(layout.labels)}).")
 
 
@@ -364,12 +375,15 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
     for r in groups:
         k = kernel(system, mode, r, form)
         stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or [])
-        events = [stop_event(layout, k, s, True) for s in stops]
+        aliases = event_aliases(system, mode)
+        stops = [aliases.get(str(s).strip(), s) for s in stops]
+        events = [stop_event(layout, k, s, True, aliases) for s in stops]
         if stop_at is None:
             events = [stop_event(layout, k, s, True) for s in _mode_events(system, mode)]
             if form != "implicit":
                 events += _condition_events(system, mode, r, layout)
-        events += [stop_event(layout, k, s, False) for s in record if s not in stops]
+        events += [stop_event(layout, k, s, False, aliases) for s in dict.fromkeys(
+            aliases.get(str(s).strip(), s) for s in record) if s not in stops]
         extra = [e for e in events if e.expr is not None]
         if extra:
             k = k.with_outputs([e.name for e in extra], [e.expr for e in extra])
