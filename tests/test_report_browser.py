@@ -201,3 +201,38 @@ def test_accents_are_marks_above_their_letters():
     assert "RigidkinMath" in " ".join(big["fonts"]), big["fonts"]
     check_marks_above(big["shots"])
     accent_shots(_accent_page(17), "accents-17px.png")
+
+
+FIREFOX = shutil.which("firefox-esr") or shutil.which("firefox")
+
+
+def _placed_page(size_px: int = 64, row: int = 110) -> str:
+    """The accent pairs at fixed places (rows at fixed heights, each pair on one baseline in 200 px wide
+    boxes from x = 20), for a browser screenshot taken without a driver."""
+    box = '<span style="display:inline-block;width:200px">{}</span>'
+    cells = "".join(
+        f'<div style="position:absolute;top:{20 + row * i}px;left:20px;font-size:{size_px}px;white-space:nowrap">'
+        f"{box.format(mathml(a))}{box.format(mathml(b))}</div>" for i, (a, b, _) in enumerate(ACCENT_PAIRS.values()))
+    return ('<!DOCTYPE html><html><head><meta charset="utf-8">'
+            f'<meta http-equiv="Content-Security-Policy" content="{CSP_NO_SCRIPT}">'
+            f"<style>{math_font_css()}{STYLE} body {{ background: white; }}</style></head>"
+            f"<body>{cells}</body></html>")
+
+
+@pytest.mark.skipif(FIREFOX is None, reason="Firefox is not installed (apt-get install firefox-esr)")
+def test_accents_are_marks_above_their_letters_in_firefox(tmp_path):
+    """The same pixel check in headless Firefox (its own --screenshot, no driver), where it is installed."""
+    import subprocess
+
+    page = tmp_path / "accents.html"
+    page.write_text(_placed_page(), encoding="utf-8")
+    png = ARTIFACTS / "accents-firefox.png"
+    ARTIFACTS.mkdir(exist_ok=True)
+    env = {"HOME": str(tmp_path), "PATH": "/usr/bin:/bin", "MOZ_HEADLESS": "1"}
+    subprocess.run([FIREFOX, "--headless", "--no-remote", "--profile", str(tmp_path), "--window-size=700,700",
+                    "--screenshot", str(png), page.as_uri()], env=env, timeout=120, capture_output=True)
+    assert png.exists(), "Firefox wrote no screenshot"
+    ink = _ink(png.read_bytes())
+    shots = {key: (ink[20 + 110 * i:20 + 110 * (i + 1)], [20, 220], [215, 415])
+             for i, key in enumerate(ACCENT_PAIRS)}
+    check_marks_above(shots)
