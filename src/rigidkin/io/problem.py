@@ -11,39 +11,38 @@ from __future__ import annotations
 
 import difflib
 import re
-import tomllib
-import typing
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import sympy as sp
-from pydantic import BaseModel, ValidationError
 from sympy.physics.vector import Vector
 
 from ..analysis.questions import Question
 from ..errors import InputError, ModelError, RigidkinError
-from ..model.checks import NONNEGATIVE, REAL, check_problem_name, generated_clash, problem_name, require
-from ..model.constraints import Contact
-from ..model.loads import V as DAMPER_SPEED
+from ..model.checks import REAL, check_problem_name, generated_clash, problem_name, require
 from ..model.shapes import SHAPES
 from ..model.system import System
 from ..units import LENGTH, ONE, TIME, to_si, unit_dimension
 from . import schema as S
+from .build_loads import ConstraintsAndLoads
+from .build_questions import Questions, _slip_handler
 from .expressions import (
     Scope,
     check_name,
     default_scope,
-    parse_condition,
-    parse_equation,
     parse_scalar,
     parse_vector,
-    slip,
 )
 from .locate import Locator, dotted
-from .prescan import check_tree, prescan
+from .prescan import check_tree
+from .reading import (  # noqa: F401  (public through here)
+    MAX_FILE_BYTES,
+    _parse_toml,
+    _toml_error,
+    read_toml,
+    validate_schema,
+)
 
-#: Larger files are refused before they are read (a problem description is a few kilobytes).
-MAX_FILE_BYTES = 1_000_000
 _UNIT_QUANTITY = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*[A-Za-z°µ]")
 _NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
 _FRICTION_WORDS = ("smooth", "rolling", "no-slip", "no_slip")
@@ -69,166 +68,8 @@ class ProblemSpec:
         return self.locator.where(path) if self.locator else str(self.path)
 
 
-# reading ------------------------------------------------------------------------------------------------
-def read_toml(path: Path | str) -> tuple[str, dict]:
-    """The text and parsed TOML of a file (size-limited; syntax errors with their line)."""
-    path = Path(path)
-    try:
-        size = path.stat().st_size
-    except OSError as exc:
-        raise InputError(f"cannot read the problem file ({exc.strerror or exc}).", where=str(path),
-                         hint="Check the path; 'rigidkin list' shows the bundled examples.") from None
-    if not path.is_file():
-        raise InputError("is not a file.", where=str(path), hint="Give the path of a .toml problem file.")
-    if size > MAX_FILE_BYTES:
-        raise InputError(f"the problem file is {size} bytes long (at most {MAX_FILE_BYTES}).", where=str(path),
-                         hint="A problem file describes one system in a few kilobytes; check that this is the "
-                              "right file.")
-    try:
-        raw = path.read_bytes()
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"the file is not UTF-8 text (byte {exc.start}).", where=str(path),
-                         hint="Save it as UTF-8.") from None
-    except OSError as exc:
-        raise InputError(f"cannot read the problem file ({exc.strerror or exc}).", where=str(path)) from None
-    return text, _parse_toml(text, str(path))
-
-
-def _parse_toml(text: str, filename: str) -> dict:
-    """TOML text → data, its structure bounded before and after ``tomllib`` reads it."""
-    prescan(text, filename)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise _toml_error(exc, filename) from None
-    except (RecursionError, MemoryError):
-        raise InputError("the TOML is nested too deeply to read.", where=filename) from None
-    check_tree(data, filename)
-    return data
-
-
-def _toml_error(exc: Exception, filename: str) -> InputError:
-    msg = str(exc)
-    m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
-    where = f"{filename}, line {m.group(1)}, column {m.group(2)}" if m else filename
-    detail = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg) if m else msg
-    return InputError(f"TOML syntax error: {detail}.", where=where,
-                      hint="Fix the TOML syntax (strings in double quotes, one 'key = value' per line, each key once "
-                           "per table; see https://toml.io).")
-
-
-def validate_schema(data: dict, locator: Locator) -> S.ProblemFile:
-    """The schema check; the first problem is reported with its line and field path."""
-    try:
-        return S.ProblemFile.model_validate(data)
-    except ValidationError as exc:
-        errors = exc.errors(include_url=False)
-        raise _schema_error(errors[0], len(errors) - 1, data, locator) from None
-    except RecursionError:
-        raise InputError("the file is nested too deeply.", where=locator.filename) from None
-
-
-def _clean_loc(loc: tuple, data) -> tuple:
-    """Drop pydantic's union tags from a location by walking the data along it."""
-    out, cur = [], data
-    for part in loc:
-        if (isinstance(cur, dict) and part in cur
-                or isinstance(cur, list) and isinstance(part, int) and 0 <= part < len(cur)):
-            out.append(part)
-            cur = cur[part]
-        elif isinstance(cur, dict) and isinstance(part, str):
-            # a tag (the union member chosen), or a missing key: keep missing keys, drop tags
-            if part in ("str", "int", "float", "bool") or "[" in part or _is_tag(cur, part):
-                continue
-            out.append(part)
-            cur = None
-        else:
-            out.append(part)
-            cur = None
-    return tuple(out)
-
-
-def _is_tag(table: dict, part: str) -> bool:
-    return any(table.get(k) == part for k in ("type", "kind", "shape"))
-
-
-def _model_at(loc: tuple):
-    """The pydantic model a (raw, tagged) location points into, for 'did you mean' hints."""
-    tp: typing.Any = S.ProblemFile
-    for part in loc:
-        tp = _unwrap(tp, part)
-        if tp is None:
-            return None
-    return tp
-
-
-def _unwrap(tp, part):
-    origin = typing.get_origin(tp)
-    if origin is typing.Annotated:
-        return _unwrap(typing.get_args(tp)[0], part)
-    if isinstance(tp, type) and issubclass(tp, BaseModel):
-        f = tp.model_fields.get(part)
-        if f is None:
-            for fi in tp.model_fields.values():
-                if fi.alias == part:
-                    f = fi
-                    break
-        return f.annotation if f is not None else None
-    if origin is dict:
-        return typing.get_args(tp)[1]
-    if origin is list:
-        return typing.get_args(tp)[0]
-    if origin in (typing.Union, __import__("types").UnionType):
-        for member in typing.get_args(tp):
-            if isinstance(member, type) and issubclass(member, BaseModel):
-                for key in ("type", "kind", "shape"):
-                    f = member.model_fields.get(key)
-                    if f is not None and part in typing.get_args(f.annotation):
-                        return member
-        return None
-    return None
-
-
-def _schema_error(err: dict, more: int, data: dict, locator: Locator) -> InputError:
-    raw_loc = tuple(err["loc"])
-    loc = _clean_loc(raw_loc, data)
-    where = locator.where(loc)
-    kind, msg = err["type"], err["msg"].removeprefix("Value error, ")
-    key = loc[-1] if loc else ""
-    hint = None
-    if kind == "missing":
-        message = f"the required field '{key}' is missing"
-        hint = f"Add {key} = ... to this table."
-        if key == "sense":
-            hint = "Say where the coordinate is measured from and which way it is positive: sense = \"...\"."
-    elif kind == "extra_forbidden":
-        message = f"unknown field '{key}'"
-        model = _model_at(raw_loc[:-1])
-        if isinstance(model, type) and issubclass(model, BaseModel):
-            known = [f.alias or n for n, f in model.model_fields.items()]
-            close = difflib.get_close_matches(str(key), known, n=1)
-            hint = (f"Did you mean '{close[0]}'? " if close else "") + f"Fields here: {', '.join(known)}."
-    elif kind in ("union_tag_invalid", "union_tag_not_found"):
-        message = msg[0].lower() + msg[1:]
-        hint = "Give the table's 'type' (constraints, loads, surfaces), 'shape' (bodies) or 'kind' (questions)."
-        if "shape" in msg:
-            hint = f"Shapes: {', '.join(SHAPES)}."
-    else:
-        got = err.get("input")
-        shown = repr(got) if not isinstance(got, dict | list) else type(got).__name__
-        if len(shown) > 60:
-            shown = shown[:57] + "..."
-        message = f"{msg[0].lower() + msg[1:]} (got {shown})"
-    if hint is None:
-        hint = "The fields and their types are listed in rigidkin.io.schema; 'rigidkin list' shows bundled examples."
-    if more:
-        message += f" ({more} more problem{'s' if more > 1 else ''} in the file; fix this one first)"
-    return InputError(message + ".", where=where, hint=hint)
-
-
 # building -----------------------------------------------------------------------------------------------
-class _Builder:
+class _Builder(ConstraintsAndLoads, Questions):
     def __init__(self, spec: S.ProblemFile, locator: Locator, name: str):
         self.spec, self.loc = spec, locator
         self.s = System(name, statement=spec.statement, title=spec.title)
@@ -524,268 +365,6 @@ class _Builder:
         if p is None:
             return False
         return p.default is inspect.Parameter.empty or (isinstance(p.default, sp.Basic) and p.default == 1)
-
-    # constraints ----------------------------------------------------------------------------------------
-    def friction(self, value, path):
-        if isinstance(value, S.FrictionCoefficients):   # { static = µs, kinetic = µk }: one alone means both
-            if value.static is None and value.kinetic is None:
-                raise InputError("a friction table needs 'static' (µs), 'kinetic' (µk) or both.",
-                                 where=self.where(*path), hint="Write friction = { static = 0.5, kinetic = 0.4 }.")
-            k = self.scalar(value.kinetic if value.kinetic is not None else value.static, path + ("kinetic",))
-            st = self.scalar(value.static if value.static is not None else value.kinetic, path + ("static",))
-            if k == 0 and st == 0:
-                return "smooth"
-            return {"static": st, "kinetic": k}
-        if isinstance(value, str) and value.strip() in _FRICTION_WORDS:
-            return value.strip()
-        if isinstance(value, str) and value.strip().isidentifier() and value.strip() not in self.scope.names:
-            raise InputError(f"friction must be \"smooth\", \"rolling\" or a coefficient µ, not '{value}'.",
-                             where=self.where(*path),
-                             hint="Write friction = \"rolling\" (no slip), \"smooth\", a number or a parameter "
-                                  "such as \"mu\".")
-        mu = self.scalar(value, path)
-        return "smooth" if mu == 0 else mu
-
-    def names(self, c, path):
-        for key in ("normal_name", "friction_name", "couple_name", "tension_name"):
-            v = getattr(c, key, None)
-            if v is not None:
-                check_name(v, "reaction", self.where(*path, key))
-
-    def constraint(self, name, c):
-        path = ("constraints", name)
-        self.names(c, path)
-        if isinstance(c, S.PinSpec):
-            basis = self.frame(c.basis, path + ("basis",), optional=True)
-            if c.axis is not None:
-                self.call(path + ("axis",), self.s.axis_of, c.axis, f"pin {name}")
-            self.call(path, self.s.pin, name, self.point(c.point, path + ("point",)),
-                      self.body(c.body_a, path + ("body_a",)), self.body(c.body_b, path + ("body_b",), True),
-                      self.point(c.point_b, path + ("point_b",), True), basis, c.axis, c.prefix, c.description)
-        elif isinstance(c, S.ContactSpec):
-            surface = self.surface(c.surface, path + ("surface",))
-            arc = c.arc if not isinstance(c.arc, S.ArcSpec) else (
-                self.vector(c.arc.toward, path + ("arc", "toward")), self.scalar(c.arc.half_angle,
-                                                                                 path + ("arc", "half_angle")))
-            if arc is True:
-                arc = None
-            self.call(path, self.s.contact, name, self.body(c.body, path + ("body",)), surface,
-                      self.point(c.centre, path + ("centre",), True), self.scalar(c.radius, path + ("radius",)),
-                      self.friction(c.friction, path + ("friction",)), c.unilateral, c.normal_name,
-                      c.friction_name, c.description, arc=arc)
-        elif isinstance(c, S.DiskContactSpec):
-            self._needs("disk_contact", path)
-            surface = self.surface(c.surface, path + ("surface",))
-            self.call(path, self.s.disk_contact, name, self.body(c.body, path + ("body",)), surface,
-                      self.vector(c.axis, path + ("axis",)), self.scalar(c.radius, path + ("radius",)),
-                      self.point(c.centre, path + ("centre",), True), self.friction(c.friction, path + ("friction",)),
-                      c.unilateral, c.normal_name, c.friction_name, c.description)
-        elif isinstance(c, S.CableSpec):
-            self._needs("cable", path)
-            points = [self.point(p, path + ("points", i)) for i, p in enumerate(c.points)]
-            bodies = None
-            if c.bodies is not None:
-                bodies = [self.body(b, path + ("bodies", i), optional=True) if b else None
-                          for i, b in enumerate(c.bodies)]
-            self.call(path, self.s.cable, name, points, self.scalar(c.length, path + ("length",)), bodies,
-                      c.tension_name, c.description)
-        elif isinstance(c, S.RopeSpec):
-            from ..model.ropes import Wrap
-
-            stations = []
-            for i, st in enumerate(c.path):
-                here = path + ("path", i)
-                if isinstance(st, S.WrapSpec):
-                    mu = None if st.mu is None else self.scalar(st.mu, here + ("mu",))
-                    stations.append(Wrap(self.body(st.pulley, here + ("pulley",)),
-                                         self.scalar(st.radius, here + ("radius",)), st.sense,
-                                         self.point(st.centre, here + ("centre",), True), mu))
-                else:
-                    stations.append(self.point(st, here))
-            self.call(path, self.s.rope, name, stations, c.tensions, c.description)
-        else:
-            self.call(path, self.s.collar, name, self.body(c.body, path + ("body",)),
-                      self.vector(c.along, path + ("along",)), self.point(c.through, path + ("through",), True),
-                      self.point(c.point, path + ("point",), True),
-                      self.body(c.track_body, path + ("track_body",), True),
-                      self.friction(c.friction, path + ("friction",)), c.normal_name, c.couple_name, c.description)
-
-    def _needs(self, method: str, path) -> None:
-        if not hasattr(self.s, method):
-            raise InputError(f"this version of rigidkin has no '{method}' constraint.", where=self.where(*path))
-
-    def surface(self, f, path):
-        body = self.body(f.body, path + ("body",), True)
-        if isinstance(f, S.LineSpec):
-            return self.call(path, self.s.line, self.point(f.point, path + ("point",)),
-                             self.vector(f.normal, path + ("normal",)), body, f.name)
-        normal = None if f.normal is None else self.vector(f.normal, path + ("normal",))
-        return self.call(path, self.s.circle, self.point(f.centre, path + ("centre",)),
-                         self.scalar(f.radius, path + ("radius",)), f.inside, body, f.name, normal)
-
-    # loads ------------------------------------------------------------------------------------------------
-    def load(self, name, ld):
-        path = ("loads", name)
-        s = self.s
-        P = lambda key, opt=False: self.point(getattr(ld, key), path + (key,), opt)  # noqa: E731
-        B = lambda key, opt=False: self.body(getattr(ld, key), path + (key,), opt)  # noqa: E731
-        sc = lambda key: self.scalar(getattr(ld, key), path + (key,))  # noqa: E731
-        vec = lambda key: None if getattr(ld, key) is None else self.vector(getattr(ld, key), path + (key,))  # noqa: E731
-        if isinstance(ld, S.GravitySpec):
-            self.call(path, s.gravity, sc("g"), vec("direction"), name=name)
-        elif isinstance(ld, S.ForceSpec):
-            self.call(path, s.force, name, P("point"), vec("vector"), B("body", True), ld.description,
-                      on=B("on", True))
-        elif isinstance(ld, S.TorqueSpec):
-            self.call(path, s.torque, name, B("body"), vec("vector"), B("reaction_body", True), ld.description)
-        elif isinstance(ld, S.SpringSpec):
-            self.call(path, s.spring, name, P("point_a"), P("point_b"), sc("stiffness"), sc("natural_length"),
-                      B("body_a", True), B("body_b", True), ld.description, on_a=B("on_a", True), on_b=B("on_b", True))
-        elif isinstance(ld, S.TorsionalSpringSpec):
-            self.call(path, s.torsional_spring, name, B("body_a"), sc("stiffness"), sc("angle"),
-                      sc("natural_angle"), B("body_b", True), vec("axis"), ld.description)
-        elif isinstance(ld, S.DamperSpec):
-            if "v" in self.scope.names:
-                raise InputError("a damper law is written in the speed v, but 'v' is also declared (a parameter "
-                                 "or coordinate).", where=self.where(*path, "law"), hint="Rename that 'v'.")
-            law = self.scalar(ld.law, path + ("law",), self.scope.with_names({"v": DAMPER_SPEED}))
-            self.call(path, s.damper, name, P("point_a"), law, vec("along"), P("point_b", True),
-                      B("body_a", True), B("body_b", True), ld.description, on_a=B("on_a", True), on_b=B("on_b", True))
-        elif isinstance(ld, S.FrictionSpec):
-            normal_force = self.scalar(ld.normal_force, path + ("normal_force",),
-                                       self.scope.with_names(self.reactions))
-            self.call(path, s.friction, name, B("body"), P("centre"), vec("normal"), sc("mu"), normal_force,
-                      sc("radius"), B("against_body", True), P("against_point", True), ld.description)
-        else:
-            self.call(path, s.impulse, name, P("point"), vec("vector"), B("body", True), ld.description,
-                      on=B("on", True))
-
-    # questions --------------------------------------------------------------------------------------------
-    def _question_scope(self) -> Scope:
-        return self.scope.with_names(self.reactions).with_functions({"slip": _slip_handler(self.s)}) \
-            .with_max_derivative(2)
-
-    def state(self, table: dict, path) -> dict:
-        out = {}
-        sc = self.scope
-        for key, v in table.items():
-            kpath = path + (key,)
-            target = parse_scalar(key, sc, self.where(*kpath))
-            coords = set(sc.coordinates.values())
-            ok = target in coords or (isinstance(target, sp.Derivative) and target.expr in coords
-                                      and target.derivative_count == 1)
-            if not ok:
-                raise InputError(f"'{key}' is not a coordinate or the rate of one.", where=self.where(*kpath),
-                                 hint="A state gives coordinates and their rates, e.g. "
-                                      "{ theta = 0, \"dot(theta)\" = 0 }.")
-            c = self.s.coordinate_of(target if target in coords else target.expr)
-            out[target] = self.value(v, kpath, c.dimension if target in coords else c.dimension / TIME)
-        return out
-
-    def mode(self, table: dict, path) -> dict:
-        for cname, state in table.items():
-            c = self._lookup(self.s.constraints, "constraint", cname, path + (cname,))
-            if state not in c.states:
-                raise InputError(f"'{state}' is not a state of {c.kind} {cname}.", where=self.where(*path, cname),
-                                 hint=f"States: {', '.join(c.states)}.")
-        return dict(table)
-
-    def substitutions(self, table: dict, path) -> dict:
-        out = {}
-        for pname, v in table.items():
-            sym = self._lookup(self.s.parameters, "parameter", pname, path + (pname,))
-            info = self.s.parameter_info[pname]
-            where = self.where(*path, pname)
-            value = self.value(v, path + (pname,), info.dimension if info.unit or info.dimension != ONE else None)
-            # zero is allowed for a positive parameter here: a limiting case (µ = 0 on a frictionless stretch)
-            out[sym] = require(value, NONNEGATIVE if sym.is_positive else REAL, f"value of the parameter {pname}",
-                               where, self.s.parameter_values(), InputError)
-        return out
-
-    def questions(self, ask: S.AskSpec) -> tuple[Question, ...]:
-        out, seen = [], {}
-        for name in ask.reactions or ():
-            if name not in self.reactions:
-                self._lookup(self.reactions, "reaction", name, ("ask", "reactions"))
-        kinds = [q.kind for q in ask.question]
-        for i, q in enumerate(ask.question):
-            path = ("ask", "question", i)
-            qname = q.name or (q.kind if kinds.count(q.kind) == 1 else f"{q.kind}_{i + 1}")
-            if qname in seen:
-                raise InputError(f"two questions are named '{qname}'.", where=self.where(*path, "name"),
-                                 hint="Give each question a name of its own.")
-            seen[qname] = i
-            fields = self.question_fields(q, path, seen)
-            out.append(Question(q.kind, qname, fields, self.where(*path)))
-        return tuple(out)
-
-    def question_fields(self, q, path, seen) -> dict:
-        qs = self._question_scope()
-        f: dict = {}
-        for key in type(q).model_fields:
-            v = getattr(q, key)
-            if key in ("kind", "name") or v is None:
-                continue
-            kpath = path + (key,)
-            if key == "description":
-                if v:
-                    f[key] = v
-            elif key == "mode":
-                f[key] = self.mode(v, kpath)
-            elif key == "set":
-                f[key] = self.substitutions(v, kpath)
-            elif key == "after":
-                if v not in seen or seen[v] >= path[-1]:
-                    raise InputError(f"'after = \"{v}\"' names no earlier question.", where=self.where(*kpath),
-                                     hint=f"Earlier questions: {', '.join(n for n in seen if seen[n] < path[-1])}.")
-                f[key] = v
-            elif key in ("start", "at"):
-                f[key] = self.state(v, kpath)
-            elif key in ("when", "until"):
-                f[key] = parse_equation(v, qs, self.where(*kpath))
-            elif key in ("holds", "regime"):
-                f[key] = parse_condition(v, qs, self.where(*kpath))
-            elif key == "reaction":
-                self._lookup(self.reactions, "reaction", v, kpath)
-                f[key] = v
-            elif key == "coordinate":
-                f[key] = self._lookup(self.scope.coordinates, "coordinate", v, kpath)
-            elif key in ("duration", "expression"):
-                f[key] = parse_scalar(v, qs, self.where(*kpath))
-            elif key == "over":
-                f[key] = tuple(self.value(x, kpath + (i,)) for i, x in enumerate(v))
-            elif key == "phase":
-                f[key] = [self.phase(p, kpath + (j,)) for j, p in enumerate(v)]
-            else:  # a field the schema knows and this reader does not: keep it as written
-                f[key] = v
-        if q.kind == "interval" and "duration" not in f and "until" not in f:
-            raise InputError("an interval question needs 'duration' or 'until'.", where=self.where(*path),
-                             hint="Add duration = \"dt\" or until = \"slip(ground) = 0\".")
-        return f
-
-    def phase(self, p: S.PhaseSpec, path) -> dict:
-        out = {"name": p.name or f"phase {path[-1] + 1}", "mode": self.mode(p.mode, path + ("mode",)),
-               "set": self.substitutions(p.set, path + ("set",))}
-        out["until"] = None if p.until is None else parse_equation(p.until, self._question_scope(),
-                                                                    self.where(*path, "until"))
-        return out
-
-
-def _slip_handler(system):
-    """``slip(contact)`` in conditions: the slip speed at a contact of ``system``."""
-
-    def slip_of(args, node, parser):
-        if len(args) != 1 or not hasattr(args[0], "id"):
-            raise parser.fail("slip() takes the name of one contact, e.g. slip(ground)", node)
-        cname = args[0].id
-        c = system.constraints.get(cname)
-        if not isinstance(c, Contact):
-            contacts = [n for n, k in system.constraints.items() if isinstance(k, Contact)]
-            raise parser.fail(f"'{cname}' is not a contact, so slip({cname}) is not defined", node,
-                              hint=f"Contacts: {', '.join(contacts) or 'none'}.")
-        return slip(sp.Symbol(cname))
-
-    return slip_of
 
 
 def system_scope(system, reactions: bool = True) -> Scope:

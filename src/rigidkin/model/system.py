@@ -23,10 +23,12 @@ from .definitions import Defined, Definition
 from .definitions import define as define_quantity
 from .frames import Frame, make_reference_frame
 from .points import Point
-from .profiles import arc_for
 from .quantities import Coordinate, Parameter
 from .shapes import Shape
 from .surfaces import Circle, Line
+from .system_constraints import ConstraintMethods
+from .system_loads import LoadMethods
+from .values import _expr, _friction
 
 t = dynamicsymbols._t
 
@@ -42,7 +44,7 @@ def _latex_basis(basis):
     return tuple(out)
 
 
-class System:
+class System(ConstraintMethods, LoadMethods):
     """A system of rigid bodies: build it with the methods below, then call :meth:`solve`.
 
     >>> import rigidkin as rk
@@ -319,239 +321,6 @@ class System:
     plane = line
     sphere = circle
 
-    # constraints --------------------------------------------------------------------------------
-    def _add_constraint(self, c):
-        self.constraints[c.name] = c
-        return c
-
-    def pin(self, name: str, point: Point | str, body_a, body_b=None, point_b=None, basis: Frame | None = None,
-            axis: str | None = None, prefix: str | None = None, description: str = "") -> C.Pin:
-        """Hold ``point`` of ``body_a`` at ``point_b`` of ``body_b`` (fixed in the ground if None)."""
-        self._claim(name, "constraint", "constraint")
-        where = f"pin {name}"
-        p = self._check_point(point, where)
-        a = self._check_body(body_a, where)
-        b = self._check_body(body_b, where, allow_none=True)
-        pb = self._check_point(point_b, where) if point_b is not None else None
-        if basis is not None:
-            self._check_frame(basis, where)
-        con = C.Pin(name, point=p, body_a=a, body_b=b, point_b=pb, basis_frame=basis, axis=axis, prefix=prefix,
-                    description=description)
-        for sym in con.reactions():
-            self._claim(sym.name, "reaction", owner=f"pin {name}")
-        return self._add_constraint(con)
-
-    def contact(self, name: str, body, surface, centre: Point | str | None = None, radius=0,
-                friction="smooth", unilateral: bool = True, normal_name: str | None = None,
-                friction_name: str | None = None, description: str = "", arc=None) -> C.Contact:
-        """A contact of ``body`` with ``surface`` through a profile (point, circle or sphere of ``radius``).
-
-        ``arc``: the part of the profile that exists, ``(toward, half_angle)`` with ``toward`` fixed in the
-        body (a half cylinder's curved face: its ``toward``, π/2 — the default for half shapes touching by
-        their curved face); ``False``: the whole circle.  Leaving the arc ends the contact's validity.
-
-        ``friction``: ``"smooth"``, ``"rolling"`` (no slip), or a coefficient µ (Coulomb friction), or
-        ``{"static": µs, "kinetic": µk}`` (sticks while |F| ≤ µs N, slides with µk N).
-        """
-        self._claim(name, "constraint", "constraint")
-        where = f"contact {name}"
-        b = self._check_body(body, where)
-        c = self._check_point(centre, where) if centre is not None else b.centre
-        if not isinstance(surface, (Line, Circle)):
-            raise ModelError("surface must be a line/plane or circle/sphere (System.line, System.circle).",
-                             where=where)
-        fr = self._friction(friction, where)
-        rad = self._value(radius, where, NONNEGATIVE, "radius")
-        con = C.Contact(name, body=b, centre=c, radius=rad,
-                        surface=surface, friction=fr,
-                        unilateral=unilateral, normal_name=normal_name, friction_name=friction_name,
-                        description=description, arc=arc_for(arc, b, c, rad, where))
-        for sym in con.reactions():
-            self._claim(sym.name, "reaction", owner=f"contact {name}")
-        return self._add_constraint(con)
-
-    def disk_contact(self, name: str, body, surface, axis: Vector, radius, centre: Point | str | None = None,
-                     friction="smooth", unilateral: bool = True, normal_name: str | None = None,
-                     friction_name: str | None = None, description: str = ""):
-        """A thin disk (wheel, coin) of ``radius`` and unit ``axis`` (fixed in ``body``) touching a plane
-        at its rim, in 3D: see :mod:`rigidkin.model.rolling3d`."""
-        from .rolling3d import DiskContact
-
-        self._claim(name, "constraint", "constraint")
-        where = f"contact {name}"
-        b = self._check_body(body, where)
-        c = self._check_point(centre, where) if centre is not None else b.centre
-        con = DiskContact(name, body=b, centre=c, radius=self._value(radius, where, POSITIVE, "radius"),
-                          surface=surface, friction=self._friction(friction, where), unilateral=unilateral,
-                          normal_name=normal_name,
-                          friction_name=friction_name, description=description,
-                          axis=self._check_vector(axis, where))
-        for sym in con.reactions():
-            self._claim(sym.name, "reaction", owner=f"contact {name}")
-        return self._add_constraint(con)
-
-    def collar(self, name: str, body, along: Vector, through: Point | str | None = None,
-               point: Point | str | None = None, track_body=None, friction="smooth",
-               normal_name: str | None = None, couple_name: str | None = None, description: str = "") -> C.Collar:
-        """A collar: ``body`` slides along a straight track (through ``through``, direction ``along``)."""
-        self._claim(name, "constraint", "constraint")
-        where = f"collar {name}"
-        b = self._check_body(body, where)
-        p = self._check_point(point, where) if point is not None else b.reference
-        thr = self._check_point(through, where) if through is not None else self.origin
-        con = C.Collar(name, body=b, point=p, through=thr, along=self._check_vector(along, where),
-                       track_body=self._check_body(track_body, where, True), friction=self._friction(friction, where),
-                       normal_name=normal_name, couple_name=couple_name, description=description)
-        for sym in con.reactions():
-            self._claim(sym.name, "reaction", owner=f"collar {name}")
-        return self._add_constraint(con)
-
-    def cable(self, name: str, points, length, bodies=None, tension_name: str | None = None,
-              description: str = "") -> C.Cable:
-        """An inextensible cable through ``points`` (ends and pulleys), taut with tension T ≥ 0.
-
-        ``bodies`` gives the body of each point (default: the body each point is fixed in, or the
-        ground); ``length`` is the cable's length between its ends.
-        """
-        self._claim(name, "constraint", "constraint")
-        where = f"cable {name}"
-        pts = tuple(self._check_point(p, where) for p in points)
-        if len(pts) < 2:
-            raise ModelError("a cable needs at least its two ends.", where=where)
-        if bodies is None:
-            bs = tuple(p.body for p in pts)
-        else:
-            if len(bodies) != len(pts):
-                raise ModelError(f"give one body (or None) for each of the {len(pts)} points.", where=where)
-            bs = tuple(self._check_body(b, where, allow_none=True) for b in bodies)
-        con = C.Cable(name, points=pts, bodies=bs, length=self._value(length, where, POSITIVE, "length"),
-                      tension_name=tension_name,
-                      description=description)
-        self._claim(con.T.name, "reaction", owner=f"cable {name}")
-        return self._add_constraint(con)
-
-    def rope(self, name: str, path, tensions=None, description: str = ""):
-        """A rope over pulleys with inertia that it does not slip on: ``path`` = end, Wrap(pulley, radius,
-        "cw"|"ccw"), …, end (see :mod:`rigidkin.model.ropes`); one tension per straight segment, each ≥ 0."""
-        from .ropes import build_rope
-
-        self._claim(name, "constraint", "constraint")
-        con = build_rope(self, name, path, tensions, description)
-        for sym in con.reactions():
-            self._claim(sym.name, "reaction", owner=f"rope {name}")
-        return self._add_constraint(con)
-
-    # loads -------------------------------------------------------------------------------------
-    def _add_load(self, load):
-        self._claim(load.name, "load", "load")
-        self.loads[load.name] = load
-        return load
-
-    def _body_of(self, point: Point, body, where):
-        if body is not None:
-            return self._check_body(body, where)
-        if point.body is None:
-            raise ModelError(f"point {point.name} is not fixed in a body, so it is not clear which body the "
-                             "load acts on.", where=where, hint="Give the body explicitly (body=...).")
-        return point.body
-
-    def gravity(self, g, direction: Vector | None = None, name: str = "gravity") -> None:
-        """Uniform gravity of magnitude ``g`` along the unit vector ``direction`` (default −Ey)."""
-        d = -self.inertial.y if direction is None else self._check_vector(direction, f"load {name}")
-        self._add_load(L.Gravity(name, g=self._value(g, f"load {name}", NONNEGATIVE, "gravitational acceleration"),
-                                 direction=d))
-
-    def force(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "",
-              on=None) -> L.Force:
-        """A known force at ``point`` (of ``body``; default: the body the point is fixed in).
-
-        At a point that moves over the body (``on=body``, the same as ``body=``), the force acts on the
-        material point of the body momentarily there; its power uses that material point's velocity.
-        """
-        where = f"force {name}"
-        p = self._check_point(point, where)
-        return self._add_load(L.Force(name, body=self._body_of(p, on if on is not None else body, where), point=p,
-                                      vector=self._check_vector(vector, where), description=description))
-
-    def torque(self, name: str, body, vector: Vector, reaction_body=None, description: str = "") -> L.Torque:
-        """A known torque on ``body`` (and its reaction on ``reaction_body``)."""
-        where = f"torque {name}"
-        return self._add_load(L.Torque(name, body=self._check_body(body, where),
-                                       vector=self._check_vector(vector, where),
-                                       reaction_body=self._check_body(reaction_body, where, True),
-                                       description=description))
-
-    def spring(self, name: str, point_a: Point | str, point_b: Point | str, stiffness, natural_length=0,
-               body_a=None, body_b=None, description: str = "", on_a=None, on_b=None) -> L.Spring:
-        """A linear spring between two points; ends not fixed in a body are anchored in the ground.
-
-        ``on_a``/``on_b``: the body whose material point momentarily at ``point_a``/``point_b`` the
-        spring pulls (for an end that moves over the body, such as the top of a rolling wheel).
-        """
-        where = f"spring {name}"
-        pa, pb = self._check_point(point_a, where), self._check_point(point_b, where)
-        ba = self._body_of(pa, on_a if on_a is not None else body_a, where)
-        bb = self._check_body(on_b if on_b is not None else body_b, where, True) \
-            if (body_b is not None or on_b is not None) else pb.body
-        ref = self.inertial.ref
-        ma = L.check_end(name, "spring", pa, ba, on_a is not None, ref)
-        mb = L.check_end(name, "spring", pb, bb, on_b is not None, ref)
-        return self._add_load(L.Spring(name, point_a=pa, body_a=ba, point_b=pb, body_b=bb, moving_a=ma, moving_b=mb,
-                                       stiffness=self._value(stiffness, where, NONNEGATIVE, "stiffness"),
-                                       natural_length=self._value(natural_length, where, NONNEGATIVE, "natural length"),
-                                       description=description))
-
-    def torsional_spring(self, name: str, body_a, stiffness, angle, natural_angle=0, body_b=None,
-                         axis: Vector | None = None, description: str = "") -> L.TorsionalSpring:
-        """A torsional spring: torque −K (angle − angle0) about ``axis`` (default Ez) on ``body_a``."""
-        where = f"torsional spring {name}"
-        return self._add_load(L.TorsionalSpring(
-            name, body_a=self._check_body(body_a, where), body_b=self._check_body(body_b, where, True),
-            stiffness=self._value(stiffness, where, NONNEGATIVE, "stiffness"), angle=_expr(angle, where),
-            natural_angle=_expr(natural_angle, where),
-            axis=self.inertial.z if axis is None else self._check_vector(axis, where), description=description))
-
-    def damper(self, name: str, point_a: Point | str, law, along: Vector | None = None,
-               point_b: Point | str | None = None, body_a=None, body_b=None, description: str = "",
-               on_a=None, on_b=None) -> L.Damper:
-        """A damper of any force law f(v) (``law`` in the symbol ``rigidkin.v`` or a callable).
-
-        ``on_a``/``on_b`` as for :meth:`spring`: v then uses the material velocity of that body there.
-        """
-        where = f"damper {name}"
-        pa = self._check_point(point_a, where)
-        pb = self._check_point(point_b, where) if point_b is not None else None
-        ob = on_b if on_b is not None else body_b
-        bb = self._check_body(ob, where, True) if ob is not None else (pb.body if pb else None)
-        ba = self._body_of(pa, on_a if on_a is not None else body_a, where)
-        ref = self.inertial.ref
-        ma = L.check_end(name, "damper", pa, ba, on_a is not None, ref)
-        mb = pb is not None and L.check_end(name, "damper", pb, bb, on_b is not None, ref)
-        return self._add_load(L.Damper(name, point_a=pa, body_a=ba, law=law,
-                                       along=None if along is None else self._check_vector(along, where),
-                                       point_b=pb, body_b=bb, moving_a=ma, moving_b=mb, description=description))
-
-    def impulse(self, name: str, point: Point | str, vector: Vector, body=None, description: str = "",
-                on=None) -> L.Impulse:
-        """An impulse F̂ applied at ``point`` (used by the impulse–momentum law); ``on`` as for :meth:`force`."""
-        where = f"impulse {name}"
-        p = self._check_point(point, where)
-        return self._add_load(L.Impulse(name, body=self._body_of(p, on if on is not None else body, where), point=p,
-                                        vector=self._check_vector(vector, where), description=description))
-
-    def friction(self, name: str, body, centre: Point | str, normal: Vector, mu, normal_force, radius=0,
-                 against_body=None, against_point: Point | str | None = None,
-                 description: str = "") -> L.SlidingFriction:
-        """Coulomb sliding friction at a contact whose normal force is known (or a named reaction)."""
-        where = f"friction {name}"
-        return self._add_load(L.SlidingFriction(
-            name, body=self._check_body(body, where), centre=self._check_point(centre, where),
-            radius=self._value(radius, where, NONNEGATIVE, "radius"), normal=self._check_vector(normal, where),
-            mu=self._value(mu, where, NONNEGATIVE, "friction coefficient µ"),
-            normal_force=_expr(normal_force, where), against_body=self._check_body(against_body, where, True),
-            against_point=self._check_point(against_point, where) if against_point is not None else None,
-            description=description))
-
     def _value(self, value, where: str, rule: str, what: str) -> sp.Expr:
         """A number or expression that must obey ``rule`` (with the parameters' numeric values put in)."""
         return require(_expr(value, where), rule, what, where, self.parameter_values())
@@ -598,33 +367,3 @@ class System:
     def __repr__(self) -> str:
         return (f"System({self.name}: {len(self.bodies)} bodies, {len(self._coordinates)} coordinates, "
                 f"{len(self.constraints)} constraints, {len(self.loads)} loads)")
-
-
-def _expr(value, where: str = "") -> sp.Expr:
-    """A number or sympy expression given to the Python API (a string is refused: no sympify on text)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, sp.Basic)):
-        kind = "the string " + repr(value)[:40] if isinstance(value, str) else type(value).__name__
-        raise ModelError(f"expected a number or a sympy expression, got {kind}.", where=where or None,
-                         hint="In Python, build expressions from the symbols System.parameter and "
-                              "System.coordinate return (l/2, m*g); text expressions belong in problem files.")
-    return sp.sympify(value)
-
-
-def _friction(friction, where):
-    if friction in (None, "smooth", 0):
-        return C.SMOOTH
-    if friction in ("rolling", "no-slip", "no_slip"):
-        return C.ROLLING
-    if isinstance(friction, C.Coulomb):
-        return friction
-    if isinstance(friction, dict) and set(friction) <= {"static", "kinetic"} and friction:
-        # static and kinetic coefficients (µs, µk); one alone means both
-        mu_k = friction.get("kinetic", friction.get("static"))
-        mu_s = friction.get("static", mu_k)
-        if mu_k in (0, None) and mu_s in (0, None):
-            return C.SMOOTH
-        return C.Coulomb(_expr(mu_k, where), _expr(mu_s, where))
-    if isinstance(friction, (int, float, sp.Basic)):
-        return C.Coulomb(_expr(friction, where))
-    raise ModelError(f"friction must be 'smooth', 'rolling', a coefficient µ or {{'static': µs, 'kinetic': µk}}, "
-                     f"not {friction!r}.", where=where)
