@@ -26,14 +26,13 @@ read is graded *unreadable*, but a claim that is hostile rather than mistaken (n
 from __future__ import annotations
 
 import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError
 from ..io.expressions import MAX_LENGTH
 from ..io.locate import Locator
-from ..io.prescan import check_tree, prescan
+from ..io.reading import _parse_toml
 from ..textsafe import is_identifier
 
 MAX_BYTES = 200_000        # a worksheet is a page of steps
@@ -103,16 +102,7 @@ def parse_worksheet(text: str, path: Path | str = "<worksheet>") -> Worksheet:
     where = str(path)
     if len(text) > MAX_BYTES:
         raise InputError(f"the worksheet is {len(text)} characters long (at most {MAX_BYTES}).", where=where)
-    prescan(text, where)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        from ..io.problem import _toml_error
-
-        raise _toml_error(exc, where) from None
-    except (RecursionError, MemoryError):
-        raise InputError("the TOML is nested too deeply to read.", where=where) from None
-    check_tree(data, where)
+    data = _parse_toml(text, where)   # bounded before and after tomllib, as a problem file
     loc = Locator(text, where)
     return _build(data, loc, path)
 
