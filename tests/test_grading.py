@@ -146,7 +146,7 @@ COLLAR_BAD = [
     ({"kind": "fbd", "body": "rod", "claim": "-m2*g*Ey at G; R_Px*Ex at P"},
      "missing from the diagram: pin reaction R_Py"),
     ({"kind": "eom", "claim": "(m1 + m2)*ddot(x) + m2*l/2*(ddot(theta)*cos(theta) + dot(theta)**2*sin(theta)) = 0"},
-     "sign: the term l·m2·θ̇²·sin(θ)/2"),
+     "sign: the term l·m₂·θ̇²·sin(θ)/2"),
 ]
 
 

@@ -28,7 +28,7 @@ t = dynamicsymbols._t
     ("x_B", "x_B", "ẋ_B", "ẍ_B"),
     ("theta_1", "θ_1", "θ̇_1", "θ̈_1"),
     ("omega_rod", "ω_rod", "ω̇_rod", "ω̈_rod"),
-    ("x2", "x2", "ẋ2", "ẍ2"),               # a Latin name keeps its digits as written (m2 in feedback)
+    ("x2", "x₂", "ẋ₂", "ẍ₂"),
     ("θ1", "θ₁", "θ̇₁", "θ̈₁"),
     ("xA", "xA", "dot(xA)", "ddot(xA)"),
 ])

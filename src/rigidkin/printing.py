@@ -26,7 +26,6 @@ _DOTS = {1: "\u0307", 2: "\u0308"}
 
 
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
-_GREEK_LETTERS = set(GREEK.values())
 _RATE_KEY = re.compile(r"(d?)dot\((\w+)\)")         # a state's rate: dot(theta), ddot(x)
 _INDEXED = re.compile(r"([^\W\d_]+?)(\d+)")       # a letter or a Greek name, then its index: theta1, x2
 
@@ -42,7 +41,7 @@ def _letter_index(head: str) -> tuple[str, str]:
 
 
 def greek(name: str) -> str:
-    """``theta_1`` → ``θ_1``; ``theta1`` → ``θ₁`` (``x2`` stays); ``F_hat`` → ``F̂``; a state's rate
+    """``theta_1`` → ``θ_1``; ``theta1`` → ``θ₁``; ``m2`` → ``m₂``; ``F_hat`` → ``F̂``; a state's rate
     ``dot(theta)`` → ``θ̇``."""
     rate = _RATE_KEY.fullmatch(name)
     if rate:
@@ -51,22 +50,20 @@ def greek(name: str) -> str:
     if tail == "hat":
         return greek(head) + "\u0302"
     letter, index = _letter_index(head)
-    if index and (letter in GREEK or letter in _GREEK_LETTERS):
+    if index:
         return GREEK.get(letter, letter) + index.translate(_SUB) + sep + tail
     return GREEK.get(head, head) + sep + tail
 
 
 def dotted(name: str, order: int) -> str:
     """A coordinate's rate with its dots over the symbol's letter: ``theta`` → θ̇, ``theta1`` → θ̇₁,
-    ``x_B`` → ẍ_B (order 2), ``phi2`` → φ̇₂, ``x1`` → ẋ1; ``dot(xA)`` / ``ddot(xA)`` where the name has no one letter
+    ``x_B`` → ẍ_B (order 2), ``phi2`` → φ̇₂, ``y1`` → ẏ₁; ``dot(xA)`` / ``ddot(xA)`` where the name has no one letter
     to carry them."""
     head, sep, tail = name.partition("_")
     letter, index = _letter_index(head)
     if not letter:
         return f"{'d' * (order - 1)}dot({greek(name)})"
-    if letter in GREEK or letter in _GREEK_LETTERS:
-        index = index.translate(_SUB)
-    return GREEK.get(letter, letter) + _DOTS[order] + index + sep + tail
+    return GREEK.get(letter, letter) + _DOTS[order] + index.translate(_SUB) + sep + tail
 
 
 class TextPrinter(StrPrinter):
