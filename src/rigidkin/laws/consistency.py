@@ -40,7 +40,7 @@ def power_balance_warnings(solution) -> list[str]:
 
 
 def _warnings(solution) -> list[str]:
-    from .crosscheck import Sampler, holds_numerically
+    from .compare import Sampler, holds_numerically
     from .energy import kinetic_energy, nonconservative_power, potential_energy
 
     setup = solution.setup
