@@ -31,19 +31,6 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _mode(items) -> dict:
-    from ..errors import InputError
-
-    out = {}
-    for it in items:
-        name, sep, state = it.partition("=")
-        if not sep or not name.strip() or not state.strip():
-            raise InputError(f"--mode '{it}' is not CONTACT=STATE.", where="--mode",
-                             hint="For example --mode ground=stick (states: open, slip, stick).")
-        out[name.strip()] = state.strip()
-    return out
-
-
 def parse_expectation(text: str, system):
     """The user's equation as an ``sp.Eq`` (or an expression meaning = 0), read by the safe parser."""
     from ..io.expressions import parse_equation, parse_scalar
@@ -60,6 +47,7 @@ def run(args) -> int:
     from ..printing import text
     from ..textsafe import terminal_safe
     from .common import guarded, json_safe, load_system, progress, with_file
+    from .options import parse_modes
 
     with progress(f"Reading {args.problem}"):
         system, spec = guarded(args, load_system, args.problem)
@@ -75,7 +63,7 @@ def run(args) -> int:
 
     try:
         with progress("Deriving by every law"):
-            sol = guarded(args, system.solve, method=args.method, mode=_mode(args.mode))
+            sol = guarded(args, system.solve, method=args.method, mode=parse_modes(args.mode))
             report = guarded(args, cross_check, sol, laws=laws, dimensions=not args.no_dimensions)
             exps = tuple(guarded(args, expectation, sol, eq, label=src) for src, eq in expected)
     except RigidkinError as exc:

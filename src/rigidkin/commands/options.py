@@ -125,3 +125,17 @@ def add_timeout(p, default: float = 600) -> None:
     p.add_argument("--timeout", type=timeout, default=default, metavar="SECONDS",
                    help=f"stop the whole command after SECONDS (default {default:g}; 0: no limit; at most "
                         f"{MAX_TIMEOUT:g}); exit status 4")
+
+
+def parse_modes(items) -> dict:
+    """``--mode CONTACT=STATE ...`` → {contact: state} (states: open, slip, stick)."""
+    from ..errors import InputError
+
+    out = {}
+    for it in items:
+        name, sep, state = it.partition("=")
+        if not sep or not name.strip() or not state.strip():
+            raise InputError(f"--mode '{it}' is not CONTACT=STATE.", where="--mode",
+                             hint="For example --mode ground=stick (states: open, slip, stick).")
+        out[name.strip()] = state.strip()
+    return out

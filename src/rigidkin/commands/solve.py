@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from .options import EXIT_UNANSWERED
+from .options import EXIT_UNANSWERED, parse_modes
 
 
 def register(sub) -> None:
@@ -21,6 +21,9 @@ def register(sub) -> None:
                         "default newton-euler)")
     p.add_argument("--format", default="text", choices=("text", "latex", "json"), help="output format")
     p.add_argument("--no-answers", action="store_true", help="skip the questions in the file's [ask]")
+    p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
+                   help="the state of a contact: open, slip or stick (repeatable); a mode at rest (every "
+                        "contact sticking) gives the reactions of statics")
     add_timeout(p)
     p.set_defaults(func=run)
 
@@ -114,7 +117,7 @@ def run(args) -> int:
         system, spec = guarded(args, load_system, args.problem)
     try:
         with progress(f"Deriving the equations of motion ({args.method})"):
-            sol = guarded(args, system.solve, method=args.method)
+            sol = guarded(args, system.solve, method=args.method, mode=parse_modes(args.mode))
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
     answers, notes = answer_questions(system, spec, args)

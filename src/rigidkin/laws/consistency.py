@@ -32,6 +32,8 @@ def power_balance_warnings(solution) -> list[str]:
     """
     from ..algebra import time_limit
 
+    if not solution.coordinates:        # a mode at rest: no motion, no power to balance
+        return []
     try:
         with time_limit(SECONDS):
             return _warnings(solution)

@@ -95,7 +95,10 @@ def _coordinates(sol) -> list[str]:
 
 def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
     out = []
-    if eom:
+    if eom and not sol.coordinates:
+        out += ["Equations of motion", f"{_INDENT}none: no degree of freedom remains in this mode (at rest, or carried "
+                "by the constraints); the reactions follow from statics", ""]
+    elif eom:
         out += ["Equations of motion", ""]
         for i, e in enumerate(r.eom, start=1):
             out += [f"{_INDENT}({i})  {text(e)} = 0", ""]
