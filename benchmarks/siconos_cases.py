@@ -123,7 +123,7 @@ CASES = {"ball": ball, "incline": incline, "spring": spring}
 
 def main():
     params = json.loads(sys.argv[1]) if len(sys.argv) > 1 else {}
-    out = {"siconos_version": getattr(sk, "__version__", None)}
+    out = {}
     for name, fn in CASES.items():
         if name in params:
             out[name] = fn(params[name])
