@@ -71,3 +71,11 @@ def test_solve_mode_refuses_unknown_contacts_and_states(tmp_path, capsys):
     assert "not a constraint" in capsys.readouterr().err
     assert main(["solve", str(f), "--mode", "ground=glue"]) == 2
     assert main(["solve", str(f), "--mode", "ground"]) == 2
+
+
+def test_check_at_rest_says_nothing_was_compared(tmp_path, capsys):
+    f = tmp_path / "incline.toml"
+    f.write_text(INCLINE)
+    assert main(["check", str(f), "--mode", "ground=stick"]) == 0
+    out = capsys.readouterr().out
+    assert "No law was compared" in out and "All agree." not in out

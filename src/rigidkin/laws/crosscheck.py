@@ -140,7 +140,11 @@ class CheckReport:
             lines += [f"  {d}" for d in wrong]
         for e in self.expectations:
             lines.append(e.describe())
-        lines.append("All agree." if self.ok else "Disagreement found.")
+        if not self.verdicts and self.ok:
+            lines.append("No law was compared: no degree of freedom remains in this mode, so there is no equation "
+                         "of motion to compare (the reactions follow from statics).")
+        else:
+            lines.append("All agree." if self.ok else "Disagreement found.")
         return "\n".join(lines)
 
 
