@@ -28,8 +28,7 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
     detail = ""
     if w.kind == "opens":
         cand = {**mode, w.name: OPEN}
-        forced = _current_signs(hyb, model, t_, y, p)
-        forced.pop(w.name, None)
+        forced = _current_signs(hyb, model, without=(w.name,))
         try:
             new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
         except ModeUnavailable as exc:
@@ -56,7 +55,7 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
                   + (f"; the impulse problem has {out.solutions} solutions (the first in the fixed order is "
                      "taken)" if out.solutions > 1 else ""))
         cand, forced_after, nts0 = mode_after(hyb, mode, out, rest_speed)
-        forced = {k_: v for k_, v in _current_signs(hyb, model, t_, y, p).items() if k_ not in out.contacts}
+        forced = _current_signs(hyb, model, without=out.contacts)
         forced.update(forced_after)
         new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
         nts = nts0 + nts
@@ -64,8 +63,7 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
             nts.insert(0, "the body bounces off")
     elif w.kind == "sticks":
         cand = {**mode, w.name: STICK}
-        forced = _current_signs(hyb, model, t_, y, p)
-        forced.pop(w.name, None)
+        forced = _current_signs(hyb, model, without=(w.name,))
         try:
             new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
         except ModeUnavailable as exc:           # the model cannot stick here: can it slip on?
@@ -86,7 +84,7 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
             raise SimulationError(f"contact {w.name} reaches the friction limit, and slipping in three "
                                   "dimensions is not simulated yet.", where=hyb.system.name)
         cand = {**mode, w.name: SLIP}
-        forced = {**_current_signs(hyb, model, t_, y, p), w.name: w.slip_sign}
+        forced = {**_current_signs(hyb, model), w.name: w.slip_sign}
         for h in getattr(model.solution.setup, "held", ()):     # held with it: the group slips together
             cand[h], forced[h] = SLIP, w.slip_sign
         new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
@@ -107,8 +105,7 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         exc.stop_reason = "arc-end"
         raise exc
     else:  # "reverses"
-        forced = _current_signs(hyb, model, t_, y, p)
-        forced.pop(w.name, None)
+        forced = _current_signs(hyb, model, without=(w.name,))
         k = hyb.regime_at(mode, t_, y, p, forced)
         new_mode, nts = mode, []
         detail = f"{w.label}: the friction direction follows the new sign"
@@ -128,14 +125,15 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
     return new_mode, k, y, ev
 
 
-def _current_signs(hyb: Hybrid, model, t_, y, p) -> dict:
-    """The friction directions of the regime in force (load → σ), kept through other contacts' changes."""
+def _current_signs(hyb: Hybrid, model, without=()) -> dict:
+    """The friction directions of the regime in force (load → σ), kept through other contacts' changes;
+    the contacts in ``without`` (those the event changes) are left to be decided anew."""
     out = {}
     sol = model.solution
     for sc in sol.setup.sign_choices:
         if sc.symbol in model.regime.signs:
             out[sc.load] = int(model.regime.signs[sc.symbol])
     # a contact whose friction is smooth or that sticks has no direction to keep
-    return {k: v for k, v in out.items()
-            if k not in hyb.contacts or (isinstance(hyb.contacts[k].friction, Coulomb)
-                                         and hyb.contacts[k].friction != SMOOTH)}
+    return {k: v for k, v in out.items() if k not in without
+            and (k not in hyb.contacts or (isinstance(hyb.contacts[k].friction, Coulomb)
+                                         and hyb.contacts[k].friction != SMOOTH))}
