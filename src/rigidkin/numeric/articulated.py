@@ -1,0 +1,377 @@
+"""Forward dynamics of a tree of pinned rigid bodies in O(n): Featherstone's articulated-body algorithm.
+
+The model is read once as a tree (``tree.read_tree``: elementary rotations, joints, offsets, loads);
+at a state every quantity is numeric.  Spatial vectors are written in the inertial frame about the
+fixed origin O (Plücker coordinates, angular part first), so no transform is needed between bodies:
+
+* motion of joint degree of freedom k, a rotation about the unit axis s_k through the pin J:
+  S_k = [s_k; r_J × s_k]; spatial velocities v_k = v_parent + S_k ψ̇_k, velocity-product
+  accelerations c_k = v_k ×ₘ S_k ψ̇_k;
+* spatial inertia of a body about O: [[Ī + m C Cᵀ, m C], [m Cᵀ, m 1]] with C = [r_G ×], and bias
+  force p = v ×* (I v) − f_ext (f_ext the loads' wrenches about O);
+* inward pass: articulated inertias I^A = I + Σ (I^A − U Uᵀ/D), bias forces p^A = p + Σ (p^A + I^a c + U u/D)
+  with U = I^A S, D = Sᵀ U, u = −Sᵀ p^A;
+* outward pass from the base's acceleration −g (gravity as a fictitious base acceleration):
+  ψ̈_k = (u_k − Uᵀ (a_parent + c_k)) / D_k.
+
+Each step costs the same for every degree of freedom, so one evaluation grows linearly with the
+number of bodies.  The accelerations of the model's coordinates follow from ψ̈ = C q̈ (C constant):
+by substitution where each joint brings one new coordinate (a chain in absolute or relative angles),
+otherwise by one LU factorisation made once per parameter set.  The pin reactions are the spatial
+forces the joints transmit, f = I^A a + p^A.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+
+from .rhs import compile_functions
+from .state import StateLayout
+from .tree import NotATree, Tree, node_coefficients, read_tree
+
+
+def _skew(v):
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def _terms(vec, frame_index):
+    """A sympy Vector as [(elementary frame, [x, y, z] expressions)]."""
+    out = []
+    for comps, frame in vec.args:
+        if frame not in frame_index:
+            raise NotATree(f"a vector is written in frame {frame}, which is not a frame of the model")
+        out.append((frame_index[frame], list(comps)))
+    return out
+
+
+class ArticulatedModel:
+    """dy/dt, energy and pin reactions of ``system`` by the articulated-body algorithm (NotATree otherwise)."""
+
+    def __init__(self, system, tree: Tree | None = None, layout: StateLayout | None = None):
+        self.system = system
+        self.tree = tr = tree or read_tree(system)
+        self.layout = lay = layout or StateLayout.of(system)
+        if tuple(lay.coordinates) != tr.coordinates:
+            raise NotATree("the state's coordinates are not the model's")
+        self.n = lay.n
+        fi = tr.frame_index
+        # every expression the algorithm needs, in one compiled function of (t, q, q̇, p) ------------------
+        exprs, self._slots = [], {}
+
+        def put(key, items):
+            self._slots[key] = (len(exprs), len(items))
+            exprs.extend(lay.to_plain(e) for e in items)
+
+        E = len(tr.edges)
+        put("axes", [a for e in tr.edges for a in e.axis])
+        self._ecoef = [(k, i) for k, e in enumerate(tr.edges) for i in e.coeffs]
+        put("ecoef", [tr.edges[k].coeffs[i] for k, i in self._ecoef])
+        put("econst", [e.offset for e in tr.edges])
+        self._ncoef = [(k, i, c) for k in range(len(tr.nodes)) for i, c in node_coefficients(tr, k).items()]
+        put("ncoef", [c for _, _, c in self._ncoef])
+        put("mass", [b.mass for b in tr.bodies])
+        put("inertia", [c for b in tr.bodies for c in b.inertia.to_matrix(b.frame.ref)])
+        self._vec_terms = {}
+        for j, jt in enumerate(tr.joints):
+            for what in ("to_pin", "to_centre"):
+                terms = _terms(getattr(jt, what), fi)
+                self._vec_terms[(what, j)] = [f for f, _ in terms]
+                put((what, j), [c for _, cs in terms for c in cs])
+        gterms = []
+        for g, d in tr.gravity:
+            for f, cs in _terms(d, fi):
+                gterms.append(f)
+                exprs_g = [g * c for c in cs]
+                put(("gravity", len(gterms) - 1), exprs_g)
+        self._gframes = gterms
+        for a, (b, arm, vec, kind) in enumerate(tr.applications):
+            if arm is not None:
+                terms = _terms(arm, fi)
+                self._vec_terms[("arm", a)] = [f for f, _ in terms]
+                put(("arm", a), [c for _, cs in terms for c in cs])
+        self._geometry = compile_functions(lay.arguments(), exprs)
+        # loads and potentials: the part that changes with the state
+        lexprs, self._lslots = [], []
+        for b, arm, vec, kind in tr.applications:
+            terms = _terms(vec, fi)
+            self._lslots.append((len(lexprs), [f for f, _ in terms]))
+            lexprs.extend(lay.to_plain(c) for _, cs in terms for c in cs)
+        self._n_load = len(lexprs)
+        lexprs.extend(lay.to_plain(u) for u in tr.potentials)
+        self._loads = compile_functions(lay.arguments(), lexprs) if lexprs else None
+        self._E = E
+        self._cache: dict = {}
+        self.conservative = all(kind == "torsional spring" for *_, kind in tr.applications)
+        from ..kinematics import Kinematics
+
+        planar = Kinematics(system).planar
+        self.reaction_names = []
+        self._react = []                  # (joint, sign, frame comps 3×k)
+        for j, jt in enumerate(tr.joints):
+            pin = system.constraints[jt.pin]
+            syms = pin._symbols(2 if planar else 3)
+            self.reaction_names += [str(s) for s in syms]
+            sign = 1.0 if pin.body_a is tr.bodies[jt.body] else -1.0
+            self._react.append((j, sign, pin.basis_frame or system.inertial, len(syms)))
+
+    # numbers that depend only on the parameters ---------------------------------------------------------
+    def numbers(self, p) -> dict:
+        key = tuple(float(v) for v in p)
+        if key not in self._cache:
+            if len(self._cache) > 64:
+                self._cache.clear()
+            self._cache[key] = self._numbers(np.asarray(p, dtype=float))
+        return self._cache[key]
+
+    def _numbers(self, p) -> dict:
+        tr, n, E = self.tree, self.n, self._E
+        rng = np.random.default_rng(7)
+        states = [np.concatenate([[0.3], rng.uniform(-1.5, 1.5, 2 * n)]) for _ in range(2)]
+        vals = [np.array(self._geometry(*s, *p), dtype=float) for s in states]
+        if not np.allclose(vals[0][:self._slots["ncoef"][0] + self._slots["ncoef"][1]],
+                           vals[1][:self._slots["ncoef"][0] + self._slots["ncoef"][1]]):
+            raise NotATree("a joint axis or angle coefficient changes with the state")
+
+        def get(v, key):
+            i, k = self._slots[key]
+            return v[i:i + k]
+
+        g = vals[0]
+        axes = get(g, "axes").reshape(E, 3)
+        K = np.array([_skew(a) for a in axes]).reshape(E, 3, 3)
+        num = {"K": K, "K2": K @ K, "parent": np.array([e.parent for e in tr.edges], dtype=int)}
+        num["erow"] = np.array([k for k, _ in self._ecoef], dtype=int)
+        num["ecol"] = np.array([i for _, i in self._ecoef], dtype=int)
+        num["eval"] = get(g, "ecoef")
+        num["econst"] = get(g, "econst")
+        C = np.zeros((n, n))
+        for (k, i, _), c in zip(self._ncoef, get(g, "ncoef")):
+            C[k, i] = c
+        num["nrow"] = np.array([k for k, _, _ in self._ncoef], dtype=int)
+        num["ncol"] = np.array([i for _, i, _ in self._ncoef], dtype=int)
+        num["nval"] = get(g, "ncoef")
+        if abs(np.linalg.det(C)) < 1e-12 * max(1.0, float(np.max(np.abs(C)))) ** n:
+            raise NotATree("the joint angles do not determine the coordinates")
+        num["solve"] = self._substitution(C)
+        # geometry in the body frames, checked constant at two states
+        Ws = [self._orientations(num, s[1:1 + n]) for s in states]
+
+        def local(key, frame, v_all):
+            out = []
+            for v, W in zip(v_all, Ws):
+                cs = get(v, key).reshape(-1, 3)
+                world = sum((W[f] @ c for f, c in zip(self._vec_terms[key], cs)), np.zeros(3))
+                out.append(W[frame].T @ world)
+            scale = max(1.0, float(np.max(np.abs(out[0]))))
+            if not np.allclose(out[0], out[1], atol=1e-10 * scale, rtol=0):
+                raise NotATree("a point the algorithm needs is not fixed in its body (" + str(key[0]) + ")")
+            return out[0]
+
+        fb = [self.tree.frame_index[b.frame.ref] for b in tr.bodies]
+        num["fb"] = fb
+        num["to_pin"] = [local(("to_pin", j), -1 if jt.parent < 0 else fb[jt.parent], vals)
+                         for j, jt in enumerate(tr.joints)]
+        num["to_centre"] = [local(("to_centre", j), fb[jt.body], vals) for j, jt in enumerate(tr.joints)]
+        num["arm"] = {a: local(("arm", a), fb[b], vals) for a, (b, arm, _, _) in enumerate(tr.applications)
+                      if arm is not None}
+        num["mass"] = get(g, "mass")
+        Ib = get(g, "inertia").reshape(-1, 3, 3)
+        if not np.allclose(Ib, get(vals[1], "inertia").reshape(-1, 3, 3)):
+            raise NotATree("an inertia is not constant in its body frame")
+        num["Ib"] = Ib
+        gvec = np.zeros(3)
+        for i, f in enumerate(self._gframes):
+            gvec += Ws[0][f] @ get(g, ("gravity", i))
+        num["g"] = gvec
+        # joint degrees of freedom: parent node, the body they carry
+        parent_node, attach = [], []
+        last_of_body: dict = {}
+        for j, jt in enumerate(tr.joints):
+            above = last_of_body.get(jt.parent, -1) if jt.parent >= 0 else -1
+            for k in jt.nodes:
+                parent_node.append(above)
+                above = k
+            last_of_body[jt.body] = above
+            attach.append(above)
+        num["pnode"], num["attach"] = parent_node, attach
+        num["nbody"] = [tr.nodes[k].body for k in range(len(tr.nodes))]
+        num["before"] = [tr.nodes[k].before for k in range(len(tr.nodes))]
+        num["naxis"] = np.array([[float(c) for c in tr.nodes[k].axis] for k in range(len(tr.nodes))])
+        num["first"] = {jt.nodes[0]: j for j, jt in enumerate(tr.joints) if jt.nodes}
+        return num
+
+    @staticmethod
+    def _substitution(C):
+        """q̈ from ψ̈ = C q̈: in order where each row brings one new coordinate (O(nonzeros)), else by LU."""
+        n = C.shape[0]
+        seen, plan = set(), []
+        for k in range(n):
+            cols = [i for i in np.nonzero(C[k])[0]]
+            new = [i for i in cols if i not in seen]
+            if len(new) != 1:
+                lu = sla.lu_factor(C)
+                return lambda psi_dd: sla.lu_solve(lu, psi_dd)
+            i = new[0]
+            seen.add(i)
+            plan.append((k, i, C[k, i], [(j, C[k, j]) for j in cols if j != i]))
+
+        def solve(psi_dd):
+            out = np.empty(n)
+            for k, i, cii, rest in plan:
+                out[i] = (psi_dd[k] - sum(c * out[j] for j, c in rest)) / cii
+            return out
+        return solve
+
+    def _orientations(self, num, q):
+        """World orientation of every elementary frame (index −1, the last row: the inertial frame)."""
+        alpha = num["econst"] + np.bincount(num["erow"], num["eval"] * q[num["ecol"]], minlength=self._E)
+        s, c = np.sin(alpha), np.cos(alpha)
+        R = np.eye(3) + s[:, None, None] * num["K"] + (1.0 - c)[:, None, None] * num["K2"]
+        W = np.empty((self._E + 1, 3, 3))
+        W[-1] = np.eye(3)
+        parent = num["parent"]
+        for e in range(self._E):
+            W[e] = W[parent[e]] @ R[e]
+        return W
+
+    # the state ------------------------------------------------------------------------------------
+    def _kinematics(self, t_, y, p):
+        num = self.numbers(p)
+        n, tr = self.n, self.tree
+        q, u = np.asarray(y[:n], dtype=float), np.asarray(y[n:2 * n], dtype=float)
+        W = self._orientations(num, q)
+        psi_d = np.bincount(num["nrow"], num["nval"] * u[num["ncol"]], minlength=len(tr.nodes))
+        nb = len(tr.bodies)
+        rG, rJ = np.empty((nb, 3)), np.empty((nb, 3))
+        for j, jt in enumerate(tr.joints):
+            if jt.parent < 0:
+                rJ[j] = num["to_pin"][j]
+            else:
+                rJ[j] = rG[jt.parent] + W[num["fb"][jt.parent]] @ num["to_pin"][j]
+            rG[j] = rJ[j] + W[num["fb"][j]] @ num["to_centre"][j]
+        nn = len(tr.nodes)
+        S, V, cacc = np.empty((nn, 6)), np.empty((nn, 6)), np.empty((nn, 6))
+        for k in range(nn):
+            s = W[num["before"][k]] @ num["naxis"][k]
+            Sk = np.concatenate([s, np.cross(rJ[num["nbody"][k]], s)])
+            vp = V[num["pnode"][k]] if num["pnode"][k] >= 0 else np.zeros(6)
+            vj = Sk * psi_d[k]
+            V[k] = vp + vj
+            cacc[k] = _crm(V[k], vj)
+            S[k] = Sk
+        Vb = np.array([V[a] if a >= 0 else np.zeros(6) for a in num["attach"]])
+        loads = np.array(self._loads(t_, *y[:2 * n], *p), dtype=float) if self._loads is not None else np.zeros(0)
+        return num, W, rG, rJ, S, V, cacc, Vb, loads
+
+    def _inertias(self, num, W, rG):
+        out = []
+        for b in range(len(self.tree.bodies)):
+            m, Wb = num["mass"][b], W[num["fb"][b]]
+            Cx = _skew(rG[b])
+            Iw = Wb @ num["Ib"][b] @ Wb.T
+            out.append(np.block([[Iw + m * Cx @ Cx.T, m * Cx], [m * Cx.T, m * np.eye(3)]]))
+        return out
+
+    def _wrenches(self, num, W, rG, Vb, loads):
+        """Spatial forces of the loads about O on each body, and their power where they are not conservative."""
+        f = np.zeros((len(self.tree.bodies), 6))
+        power = 0.0
+        for a, (b, arm, _, kind) in enumerate(self.tree.applications):
+            i, frames = self._lslots[a]
+            cs = loads[i:i + 3 * len(frames)].reshape(-1, 3)
+            vec = sum((W[fr] @ c for fr, c in zip(frames, cs)), np.zeros(3))
+            w, v0 = Vb[b][:3], Vb[b][3:]
+            if arm is None:
+                f[b, :3] += vec
+                pw = vec @ w
+            else:
+                r = rG[b] + W[num["fb"][b]] @ num["arm"][a]
+                f[b] += np.concatenate([np.cross(r, vec), vec])
+                pw = vec @ (v0 + np.cross(w, r))
+            if kind != "torsional spring":
+                power += pw
+        return f, power
+
+    def dynamics(self, t_, y, p):
+        """(q̈, ψ̈, pin reactions, power of the non-conservative loads, kinematics) at the state."""
+        num, W, rG, rJ, S, V, cacc, Vb, loads = self._kinematics(t_, y, p)
+        tr = self.tree
+        nn = len(tr.nodes)
+        Ibody = self._inertias(num, W, rG)
+        fext, power = self._wrenches(num, W, rG, Vb, loads)
+        IA = np.zeros((nn, 6, 6))
+        pA = np.zeros((nn, 6))
+        for b, a in enumerate(num["attach"]):
+            if a >= 0:
+                IA[a] += Ibody[b]
+                pA[a] += _crf(Vb[b], Ibody[b] @ Vb[b]) - fext[b]
+        U, D, u = np.empty((nn, 6)), np.empty(nn), np.empty(nn)
+        for k in range(nn - 1, -1, -1):
+            U[k] = IA[k] @ S[k]
+            D[k] = S[k] @ U[k]
+            u[k] = -S[k] @ pA[k]
+            par = num["pnode"][k]
+            if par >= 0:
+                Ia = IA[k] - np.outer(U[k], U[k]) / D[k]
+                IA[par] += Ia
+                pA[par] += pA[k] + Ia @ cacc[k] + U[k] * (u[k] / D[k])
+        A = np.empty((nn, 6))
+        base = np.concatenate([np.zeros(3), -num["g"]])
+        psi_dd = np.empty(nn)
+        for k in range(nn):
+            par = num["pnode"][k]
+            a = (A[par] if par >= 0 else base) + cacc[k]
+            psi_dd[k] = (u[k] - U[k] @ a) / D[k]
+            A[k] = a + S[k] * psi_dd[k]
+        qdd = num["solve"](psi_dd)
+        return qdd, (IA, pA, A, W), power, (num, W, rG, Vb, loads)
+
+    def accelerations(self, t_, y, p) -> np.ndarray:
+        """q̈ of every coordinate at (t, y = (q, q̇)) with parameters p."""
+        return self.dynamics(t_, y, p)[0]
+
+    def rates(self, t_, y, p) -> np.ndarray:
+        """dy/dt of (q, q̇) and of the work of the non-conservative loads (the simulation's state)."""
+        qdd, _, power, _ = self.dynamics(t_, y, p)
+        return np.concatenate([y[self.n:2 * self.n], qdd, [power]])
+
+    def reactions(self, t_, y, p) -> dict:
+        """The pin reactions (force on body_a, along the pin's basis) from the forces the joints transmit."""
+        _, (IA, pA, A, _), _, (num, W, _, _, _) = self.dynamics(t_, y, p)
+        out = {}
+        names = iter(self.reaction_names)
+        tr = self.tree
+        for j, sign, frame, k in self._react:
+            nodes = tr.joints[j].nodes
+            if nodes:
+                f = IA[nodes[0]] @ A[nodes[0]] + pA[nodes[0]]
+                force = sign * f[3:]
+            else:
+                force = np.full(3, np.nan)       # a welded body: its joint force is not computed here
+            Wf = W[tr.frame_index[frame.ref]] if frame.ref in tr.frame_index else np.eye(3)
+            comp = Wf.T @ force
+            for i in range(k):
+                out[next(names)] = float(comp[i])
+        return out
+
+    def energy(self, t_, y, p) -> tuple[float, float]:
+        """(T, U): kinetic energy and the potential of gravity and of the torsional springs."""
+        num, W, rG, rJ, S, V, cacc, Vb, loads = self._kinematics(t_, y, p)
+        Ibody = self._inertias(num, W, rG)
+        T = 0.5 * sum(float(v @ I @ v) for v, I in zip(Vb, Ibody))
+        U = -float(sum(m * (num["g"] @ r) for m, r in zip(num["mass"], rG)))
+        U += float(np.sum(loads[self._n_load:]))
+        return T, U
+
+
+def _crm(v, m):
+    """Spatial motion cross product v ×ₘ m."""
+    w, v0 = v[:3], v[3:]
+    return np.concatenate([np.cross(w, m[:3]), np.cross(w, m[3:]) + np.cross(v0, m[:3])])
+
+
+def _crf(v, f):
+    """Spatial force cross product v ×* f."""
+    w, v0 = v[:3], v[3:]
+    return np.concatenate([np.cross(w, f[:3]) + np.cross(v0, f[3:]), np.cross(w, f[3:])])
