@@ -12,8 +12,6 @@ local sweep, run for run, because every run is integrated by the same generated 
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -89,28 +87,32 @@ class SweepResult:
         cols["end: t"] = self.result.t_end
         for i, lab in enumerate(self.layout.labels):
             cols[f"end: {lab}"] = self.result.y_end[:, i]
-        cols["status"] = np.array([batch.STATUS[int(s)] for s in self.result.status], dtype=object)
+        cols["status"] = status_text(self.result.status)
         return cols
 
-    def to_csv(self, path, rows: int = 20_000) -> Path:
-        """Write the table to ``path`` in chunks of ``rows`` rows, whole or not at all (OutputError: why not)."""
-        from ..outfile import writing
-        from ..textsafe import safe_csv_cell
+    def metadata(self) -> dict[str, str]:
+        """What a Parquet table keeps beside its columns: the system, the backend, the events."""
+        return {"rigidkin.system": self.system_name, "rigidkin.backend": self.backend,
+                "rigidkin.events": "\n".join(self.result.event_names)}
 
-        cols = self.columns()
-        names = list(cols)
-        with writing(path, "the sweep table") as fh:
-            buf = io.StringIO()
-            w = csv.writer(buf, lineterminator="\r\n")
-            w.writerow([safe_csv_cell(n) for n in names])
-            for start in range(0, len(self), rows):
-                block = range(start, min(start + rows, len(self)))
-                w.writerows([safe_csv_cell(_fmt(cols[n][r])) for n in names] for r in block)
-                fh.write(buf.getvalue())
-                buf.seek(0)
-                buf.truncate()
-            fh.write(buf.getvalue())
-        return Path(path)
+    def write(self, path) -> Path:
+        """Write the table to ``path``: Parquet for ``.parquet``/``.pq`` (needs pyarrow), CSV otherwise; whole or
+        not at all (OutputError: why not).  See :mod:`rigidkin.numeric.tables`."""
+        from .tables import write_table
+
+        return write_table(self.columns(), path, "the sweep table", self.metadata())
+
+    def to_csv(self, path) -> Path:
+        """Write the table as CSV (numbers as ``repr`` writes them, missing values empty, names neutralised)."""
+        from .tables import write_csv
+
+        return write_csv(self.columns(), path, "the sweep table")
+
+    def to_parquet(self, path) -> Path:
+        """Write the table as Parquet (needs pyarrow; missing values as nulls)."""
+        from .tables import write_parquet
+
+        return write_parquet(self.columns(), path, "the sweep table", self.metadata())
 
     def plot(self, path, x: str | None = None, y: str | None = None) -> Path:
         """A figure of one table column against another (default: the first event's time against the first input)."""
@@ -137,10 +139,14 @@ class SweepResult:
         return save_figure(fig, path, dpi=120)
 
 
-def _fmt(v) -> str:
-    if isinstance(v, (float, np.floating)):
-        return "" if np.isnan(v) else repr(float(v))
-    return str(v)
+def status_text(codes: np.ndarray) -> np.ndarray:
+    """The status of each run in words (:data:`rigidkin.numeric.batch.STATUS`), as an object array."""
+    codes = np.asarray(codes).reshape(-1)
+    if not codes.size:
+        return np.empty(0, dtype=object)
+    u, inverse = np.unique(codes, return_inverse=True)
+    words = np.array([batch.STATUS.get(int(c), f"status {int(c)}") for c in u.tolist()], dtype=object)
+    return words[inverse.reshape(-1)]
 
 
 # ---------------------------------------------------------------------------------------------------
