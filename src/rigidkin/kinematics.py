@@ -47,7 +47,7 @@ class Kinematics:
         for fr in s.frames.values():
             if fr.parent is None:
                 continue
-            if fr.sequence is not None or not self.is_zero_vector(fr.axis.cross(fr.parent.z)):
+            if fr.sequence is not None or fr.axis is None or not self.is_zero_vector(fr.axis.cross(fr.parent.z)):
                 return False
         for p in s.points.values():
             if p.parent is not None and not algebra.is_zero(p.offset.dot(z)):

@@ -2,7 +2,8 @@
 
 A frame is the inertial frame F (basis Ex, Ey, Ez) or a frame rotated from another one: by an angle
 about an axis (any number of intermediate frames: one that follows a line of centres, a body frame),
-or by a body-fixed sequence of three angles (3-1-3 Euler angles, 3-2-1 yaw-pitch-roll).  The basis
+or by a body-fixed sequence of three angles (3-1-3 Euler angles, 3-2-1 yaw-pitch-roll), or by four Euler
+parameters (a quaternion: no singular configuration; see ``rigidkin.model.speeds``).  The basis
 vectors keep the names the user gives them (``er, eθ, ez``) for printing.
 """
 
@@ -31,6 +32,8 @@ class Frame:
     sequence: str | None = None
     angles: tuple | None = None
     description: str = ""
+    quaternion: tuple | None = None     # Euler parameters (e0, e1, e2, e3) when oriented by a quaternion
+    speeds: tuple | None = None         # its angular-velocity components w1, w2, w3 when they are speeds
 
     @property
     def x(self) -> Vector:

@@ -74,6 +74,7 @@ class System(ConstraintMethods, LoadMethods):
         self.definitions: dict[str, Definition] = {}     # derived quantities (System.define)
         self._names: dict[str, str] = {}
         self._cache: dict = {}
+        self.speed_groups: dict = {}                     # frame name → SpeedGroup (model/speeds.py)
         basis = ("Ex", "Ey", "Ez")
         ref = make_reference_frame("F", basis, _latex_basis(basis))
         self.inertial = Frame("F", ref, basis, description="the inertial frame (the ground)")
@@ -190,13 +191,35 @@ class System(ConstraintMethods, LoadMethods):
     # frames and points -----------------------------------------------------------------------
     def frame(self, name: str, parent: Frame | None = None, angle=None, axis: str | Vector = "z",
               basis: tuple[str, str, str] | None = None, description: str = "",
-              sequence: str | None = None, angles=None) -> Frame:
+              sequence: str | None = None, angles=None, quaternion=None, speeds=None, initial=None,
+              rates=None) -> Frame:
         """A frame rotated from ``parent`` (default: the inertial frame) by ``angle`` about ``axis``.
 
         ``axis`` is a basis vector name of the parent (``"z"``, ``"-y"``) or a vector fixed in the
         parent.  For 3D, ``sequence="313"`` (or "321", ...) with three ``angles`` gives a body-fixed
-        rotation sequence.
+        rotation sequence.  ``quaternion=("e0", "e1", "e2", "e3")`` (or ``True`` for names made from
+        the frame's) orients it by Euler parameters instead, declared here as coordinates (``initial``:
+        their four values, default (1, 0, 0, 0)); its angular-velocity components along its own basis
+        relative to ``parent`` are then its generalised speeds (``speeds``: their names, default
+        ``w_<basis>``; ``rates``: their initial values).  ``speeds=`` with a ``sequence`` asks for the same
+        speeds for Euler angles (Kane's choice; the default there is u = q̇).  See ``rigidkin.model.speeds``.
         """
+        if quaternion is not None and quaternion is not False:
+            return self._quaternion_frame(name, parent, basis, description, quaternion, speeds, initial, rates,
+                                          sequence, angles, angle)
+        if (initial is not None or rates is not None) and speeds is None:
+            raise ModelError("initial and rates are for a frame oriented by a quaternion (or with speeds).",
+                             where=f"frame {name}", hint="Give the angles' initial values with their coordinates.")
+        fr = self._plain_frame(name, parent, angle, axis, basis, description, sequence, angles)
+        if speeds is not None:
+            if sequence is None:
+                raise ModelError("angular speeds need a frame oriented by a rotation sequence or a quaternion.",
+                                 where=f"frame {name}", hint="Use System.angular_speeds(frame, coordinates=...) for "
+                                                             "a chain of frames.")
+            self.angular_speeds(fr, speeds, fr.angles, rates)
+        return fr
+
+    def _plain_frame(self, name, parent, angle, axis, basis, description, sequence, angles, orient=None) -> Frame:
         self._claim(name, "frame", "frame")
         parent = parent or self.inertial
         self._check_frame(parent, f"frame {name}")
@@ -204,7 +227,9 @@ class System(ConstraintMethods, LoadMethods):
         if len(basis) != 3 or len(set(basis)) != 3:
             raise ModelError("a basis needs three distinct names.", where=f"frame {name}")
         ref = make_reference_frame(name, basis, _latex_basis(basis))
-        if sequence is not None:
+        if orient is not None:
+            fr = orient(ref, parent, basis)
+        elif sequence is not None:
             if angles is None or len(angles) != 3:
                 raise ModelError("a rotation sequence needs three angles.", where=f"frame {name}")
             ref.orient_body_fixed(parent.ref, tuple(angles), sequence)
@@ -220,6 +245,98 @@ class System(ConstraintMethods, LoadMethods):
             fr = Frame(name, ref, basis, parent, ang, ax, None, None, description)
         self.frames[name] = fr
         return fr
+
+    def _quaternion_frame(self, name, parent, basis, description, quaternion, speeds, initial, rates,
+                          sequence, angles, angle) -> Frame:
+        """A frame oriented by Euler parameters, its angular-velocity components as speeds."""
+        from .speeds import quaternion_dcm, quaternion_group
+
+        where = f"frame {name}"
+        if sequence is not None or angles is not None or angle is not None:
+            raise ModelError("give either a quaternion or angles (angle, or sequence with angles), not both.",
+                             where=where)
+        basis_t = tuple(basis) if basis else (f"{name.lower()}x", f"{name.lower()}y", f"{name.lower()}z")
+        names = tuple(f"{name}_e{i}" for i in range(4)) if quaternion is True else tuple(quaternion)
+        if len(names) != 4 or not all(isinstance(n, str) for n in names):
+            raise ModelError("a quaternion needs the names of its four Euler parameters (e0, e1, e2, e3).",
+                             where=where, hint='Write quaternion=("e0", "e1", "e2", "e3"), scalar part first.')
+        snames = tuple(f"w_{b}" for b in basis_t) if speeds is None or speeds is True else tuple(speeds)
+        if len(snames) != 3 or not all(isinstance(n, str) for n in snames):
+            raise ModelError("the angular speeds of a frame need three names.", where=where)
+        init = (1, 0, 0, 0) if initial is None else tuple(initial)
+        w0 = (None, None, None) if rates is None else tuple(rates)
+        if len(init) != 4 or len(w0) != 3:
+            raise ModelError("a quaternion's initial value has four numbers and its speeds' rates three.",
+                             where=where)
+        vals = []
+        for i, v in enumerate(init):
+            vals.append(self._number(v, f"{where}, initial {names[i]}"))
+        norm = sum(v * v for v in vals) ** 0.5
+        if not norm > 0:
+            raise ModelError("the initial quaternion is zero, which is no rotation.", where=where,
+                             hint="Give (1, 0, 0, 0) for the frame aligned with its parent.")
+        w0 = tuple(None if v is None else self._number(v, f"{where}, initial rate") for v in w0)
+        holder = {}
+
+        def orient(ref, par, basis_):
+            for n in snames:
+                self._claim(n, "speed", owner=f"speed {n} of frame {name}")
+            e = tuple(self.coordinate(n, f"Euler parameter {i} of frame {name} (scalar part first)", kind="other",
+                                      initial=vals[i] / norm) for i, n in enumerate(names))
+            ref.orient_explicit(par.ref, quaternion_dcm(e).T)
+            fr = Frame(name, ref, basis_, par, None, None, None, e, description, quaternion=e)
+            group = quaternion_group(fr, e, snames)
+            group.initial = w0
+            ref.set_ang_vel(par.ref, sum((w * b for w, b in zip(group.speeds, (fr.x, fr.y, fr.z))), Vector(0)))
+            remember(ref, par.ref, None, None)
+            fr.speeds = group.speeds
+            holder["group"] = group
+            return fr
+
+        fr = self._plain_frame(name, parent, None, "z", basis_t, description, None, None, orient)
+        group = holder["group"]
+        self.speed_groups[name] = group
+        self._cache.clear()
+        return fr
+
+    def angular_speeds(self, frame: Frame | str, names=None, coordinates=None, rates=None) -> tuple:
+        """Kane's choice for a frame oriented by angles: the components of its angular velocity (in the
+        inertial frame) along its own basis become generalised speeds in place of the rates of
+        ``coordinates`` (default: the frame's sequence angles).  Returns the speeds w(t)."""
+        from .speeds import angular_group
+
+        fr = self._lookup("frame", self.frames, Frame, frame, "angular speeds")
+        where = f"frame {fr.name}"
+        coords = tuple(fr.angles or ()) if coordinates is None else tuple(coordinates)
+        known = set(self.coordinates)
+        if len(coords) != 3 or any(q not in known for q in coords):
+            raise ModelError("angular speeds replace the rates of three coordinates of the system.", where=where)
+        taken = {q for g in self.speed_groups.values() for q in g.coordinates}
+        if taken & set(coords) or fr.name in self.speed_groups:
+            raise ModelError("these coordinates already have speeds of their own.", where=where)
+        snames = tuple(f"w_{b}" for b in fr.basis) if names is None or names is True else tuple(names)
+        if len(snames) != 3:
+            raise ModelError("the angular speeds of a frame need three names.", where=where)
+        for n in snames:
+            self._claim(n, "speed", owner=f"speed {n} of frame {fr.name}")
+        group = angular_group(fr, fr.parent.ref, coords, snames, self.inertial.ref)
+        if rates is not None:
+            group.initial = tuple(None if v is None else self._number(v, f"{where}, initial rate") for v in rates)
+        fr.speeds = group.speeds
+        self.speed_groups[fr.name] = group
+        self._cache.clear()
+        return group.speeds
+
+    def _number(self, v, where) -> float:
+        if isinstance(v, bool) or not isinstance(v, (int, float, str, sp.Basic)):
+            raise ModelError(f"{v!r} is not a number.", where=where)
+        x = float(v) if isinstance(v, (int, float)) else to_si(v, None, where) if isinstance(v, str) \
+            else float(_expr(v, where)) if sp.sympify(v).is_number else None
+        if x is None:
+            raise ModelError(f"{v} is not a number.", where=where)
+        if x != x or x in (float("inf"), float("-inf")):
+            raise ModelError(f"{v!r} is not a finite number.", where=where)
+        return x
 
     def _check_frame(self, frame, where):
         if not isinstance(frame, Frame) or self.frames.get(frame.name) is not frame:

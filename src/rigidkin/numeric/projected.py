@@ -5,15 +5,20 @@ rates eliminated in closed form) is what a person checks on paper, but for a sys
 Whipple bicycle — four bodies, two rolling wheels, a holonomic constraint with no closed form — the
 closed forms grow beyond any use.  The same laws are evaluated here numerically instead:
 
-* every body's Euler's laws, F = m ā and M̄ = dH̄/dt with H̄ = Ī·ω, written for all coordinates:
-  with u = q̇, v̄ = Jv u, ω = Jω u, ā = Jv q̈ + ā0, dH̄/dt = JH q̈ + h0;
+* every body's Euler's laws, F = m ā and M̄ = dH̄/dt with H̄ = Ī·ω, written for all speeds u: the
+  rates q̇ where nothing else is said, a body's angular-velocity components where its frame is
+  oriented by a quaternion or asks for them (``rigidkin.model.speeds``; q̇ = W(q) u), so that
+  v̄ = Jv u, ω = Jω u, ā = Jv u̇ + ā0, dH̄/dt = JH u̇ + h0;
 * the generalised mass matrix and forcing of all coordinates, Mf = Σ m JvᵀJv + JωᵀJH and
   ff = Q − Σ (m Jvᵀ ā0 + Jωᵀ h0), Q the generalised active forces (the reactions are workless and
   drop out — which is checked, not assumed);
-* the constraint rows A(q) q̇ + b = 0 that relate the rates: at a state, the dependent rates are
-  u_d = −A_d⁻¹ (A_i u_i + b), the accelerations satisfy A q̈ + c0 = 0, and with the matrix of
-  independent partial rates T = [I; −A_d⁻¹ A_i] the equations projected on the independent rates are
-  (Tᵀ Mf T) u̇_i = Tᵀ (ff − Mf q̈p)   (Kane's equations; Maggi's form).
+* the constraint rows A(q) u + b = 0 that relate the speeds: at a state, the dependent speeds are
+  u_d = −A_d⁻¹ (A_i u_i + b), the accelerations satisfy A u̇ + c0 = 0, and with the matrix of
+  independent partial rates T = [I; −A_d⁻¹ A_i] the equations projected on the independent speeds are
+  (Tᵀ Mf T) u̇_i = Tᵀ (ff − Mf u̇p)   (Kane's equations; Maggi's form);
+* the state is (q, u_i) and the coordinates follow the kinematic equations q̇ = W(q) u; Euler
+  parameters are pulled back to |e| = 1 by the stabilisation term k (1 − |e|²) e, which changes no
+  rotation (the frame turns by e/|e|).
 
 Only small symbolic pieces are built (partial velocities, remainder accelerations, constraint rows
 and their derivatives); ``sympy.lambdify`` with common-subexpression elimination turns them into one
@@ -36,6 +41,8 @@ from sympy.physics.vector import dynamicsymbols
 from .. import algebra
 from ..errors import ConstraintError, ModelError, RigidkinError
 from ..kinematics import Kinematics, linear_form
+from ..model.speeds import STABILISATION, speeds_of
+from .projected_assembly import _full_rates, _partials, _project, _vec
 
 t = dynamicsymbols._t
 
@@ -81,11 +88,14 @@ class ProjectedModel:
                  values: Mapping | None = None):
         self.system = system
         self.kin = kin = Kinematics(system)
-        self.coordinates = tuple(system.coordinates)
+        self.kinematic = ke = speeds_of(system)
+        self.coordinates = tuple(ke.configuration)
         qs = list(self.coordinates)
-        n = len(qs)
-        self.rates = tuple(q.diff(t) for q in qs)
-        accels = [q.diff(t, 2) for q in qs]
+        self.speeds = tuple(ke.speeds)
+        nu = len(self.speeds)
+        self.rates = self.speeds
+        accels = [u.diff(t) for u in self.speeds]
+        self._ke = ke.substitute
         # constraint rows -----------------------------------------------------------------------
         rows = []
         loads = list(system.loads.values())
@@ -99,31 +109,34 @@ class ProjectedModel:
                                  hint="Use a rolling (stick) or smooth mode, or System.solve for this system.")
         relating = [r for r in rows if not algebra.is_zero(r.velocity)]
         self.rows = tuple(relating)
+        velocities = [self._ke(r.velocity) for r in relating]
         if relating:
-            A, b = linear_form([r.velocity for r in relating], list(self.rates))
+            A, b = linear_form(velocities, list(self.speeds))
         else:
-            A, b = sp.zeros(0, n), sp.zeros(0, 1)
-        # A q̈ + c0 = 0: the rows' time derivatives with the accelerations set to zero
+            A, b = sp.zeros(0, nu), sp.zeros(0, 1)
+        # A u̇ + c0 = 0: the rows' time derivatives (q̇ = W u again) with the speeds' rates set to zero
         zero_acc = {a: 0 for a in accels}
-        c0 = sp.Matrix([sp.diff(r.velocity, t).xreplace(zero_acc) for r in relating]) if relating \
+        c0 = sp.Matrix([self._ke(sp.diff(v, t)).xreplace(zero_acc) for v in velocities]) if relating \
             else sp.zeros(0, 1)
         gaps = [sp.sympify(r.gap) for r in relating if r.gap is not None and not algebra.is_zero(r.gap)]
-        # independent coordinates --------------------------------------------------------------------
-        self._plain = {**{u: sp.Symbol(f"_u{i}", real=True) for i, u in enumerate(self.rates)},
+        # independent speeds -------------------------------------------------------------------------
+        self._plain = {**{u: sp.Symbol(f"_u{i}", real=True) for i, u in enumerate(self.speeds)},
                        **{q: sp.Symbol(f"_q{i}", real=True) for i, q in enumerate(qs)}}
         self.parameters = tuple(system.parameters.values())
         self._args = [sp.Symbol("_t", real=True)] + [self._plain[q] for q in qs] + \
-                     [self._plain[u] for u in self.rates] + list(self.parameters)
+                     [self._plain[u] for u in self.speeds] + list(self.parameters)
         rng = random.Random(5)
         ref = {s: rng.uniform(0.2, 0.6) for s in self._args}
-        Anum = np.array(self._sym(A).xreplace(ref).evalf(), dtype=float) if relating else np.zeros((0, n))
+        Anum = np.array(self._sym(A).xreplace(ref).evalf(), dtype=float) if relating else np.zeros((0, nu))
         rank = np.linalg.matrix_rank(Anum, tol=1e-9) if relating else 0
         if rank < len(relating):
             raise ConstraintError(f"{len(relating) - rank} of the constraint rows repeat the others.",
                                   where=system.name, hint="Remove the redundant constraint.")
+        # a speed is named by its coordinate where it is that coordinate's rate
+        self._speed_names = tuple(u.expr if isinstance(u, sp.Derivative) else u for u in self.speeds)
         if independent is None:
             dep_idx: list[int] = []
-            for i in reversed(range(n)):
+            for i in reversed(range(nu)):
                 trial = dep_idx + [i]
                 if np.linalg.matrix_rank(Anum[:, trial], tol=1e-9) == len(trial):
                     dep_idx = trial
@@ -132,15 +145,20 @@ class ProjectedModel:
             dep_idx.sort()
         else:
             keep = set(independent)
-            dep_idx = [i for i, q in enumerate(qs) if q not in keep]
+            unknown = [k for k in keep if k not in self._speed_names]
+            if unknown:
+                raise ModelError(f"{', '.join(map(str, unknown))} name no speed of the model.", where=system.name,
+                                 hint="Speeds: " + ", ".join(map(str, self._speed_names)) + ".")
+            dep_idx = [i for i, q in enumerate(self._speed_names) if q not in keep]
             if len(dep_idx) != rank or (rank and np.linalg.matrix_rank(Anum[:, dep_idx], tol=1e-9) < rank):
-                raise ConstraintError("the constraints cannot determine the rates of "
-                                      + ", ".join(qs[i].func.__name__ for i in dep_idx) + ".", where=system.name,
-                                      hint=f"Choose {n - rank} independent coordinates.")
+                raise ConstraintError("the constraints cannot determine the speeds "
+                                      + ", ".join(str(self._speed_names[i]) for i in dep_idx) + ".",
+                                      where=system.name, hint=f"Choose {nu - rank} independent speeds.")
         self.dependent_index = tuple(dep_idx)
-        self.independent_index = tuple(i for i in range(n) if i not in dep_idx)
-        self.independent = tuple(qs[i] for i in self.independent_index)
-        self.dependent = tuple(qs[i] for i in dep_idx)
+        self.independent_index = tuple(i for i in range(nu) if i not in dep_idx)
+        self.independent = tuple(self._speed_names[i] for i in self.independent_index)
+        self.dependent = tuple(self._speed_names[i] for i in dep_idx)
+        n = nu
         # bodies: partial velocities, remainder accelerations; active forces ------------------------
         Fr = kin.F.ref
         pieces: list[sp.Matrix] = []
@@ -151,11 +169,11 @@ class ProjectedModel:
                 raise ModelError("a massless body has no inertia to project; fold it into its neighbours.",
                                  where=f"body {body.name}")
             G = body.centre
-            w = kin.omega_of(body)
+            w = self._ke(kin.omega_of(body))
             pv, pw = self._body_partials(body)
             I = body.inertia
-            a0 = algebra.substitute(kin.acceleration(G), zero_acc)
-            h0 = I.dot(algebra.substitute(kin.alpha(body.frame), zero_acc)) + w.cross(I.dot(w))
+            a0 = algebra.substitute(self._ke(kin.acceleration(G)), zero_acc)
+            h0 = I.dot(algebra.substitute(self._ke(kin.alpha(body.frame)), zero_acc)) + w.cross(I.dot(w))
             Jv = sp.Matrix.hstack(*[_vec(p, Fr) for p in pv])
             Jw = sp.Matrix.hstack(*[_vec(p, Fr) for p in pw])
             JH = sp.Matrix.hstack(*[_vec(I.dot(p), Fr) for p in pw])
@@ -177,7 +195,7 @@ class ProjectedModel:
         gq = sp.Matrix(gaps) if gaps else sp.zeros(1, 1)
         # empty blocks travel as one zero row (lambdify has no empty matrices); _raw drops them again
         pieces += [Q, A if relating else sp.zeros(1, n), b if relating else sp.zeros(1, 1),
-                   c0 if relating else sp.zeros(1, 1), gq, gq.jacobian(qs) if gaps else sp.zeros(1, n)]
+                   c0 if relating else sp.zeros(1, 1), gq, gq.jacobian(qs) if gaps else sp.zeros(1, len(qs))]
         self._pieces = [self._sym(P) for P in pieces]
         extra = set().union(*[P.free_symbols for P in self._pieces]) - set(self._args)
         if extra:
@@ -196,14 +214,14 @@ class ProjectedModel:
         """Partial velocities of the mass centre and partial angular velocities of ``body``."""
         key = ("body", body.name)
         if key not in self._partials_cache:
-            self._partials_cache[key] = (self._partial(self.kin.velocity(body.centre)),
-                                         self._partial(self.kin.omega_of(body)))
+            self._partials_cache[key] = (self._partial(self._ke(self.kin.velocity(body.centre))),
+                                         self._partial(self._ke(self.kin.omega_of(body))))
         return self._partials_cache[key]
 
     def _partial(self, vel) -> list:
-        """Partial velocities ∂vel/∂q̇_j (vectors, differentiated component by component in their frames)."""
+        """Partial velocities ∂vel/∂u_j (vectors, differentiated component by component in their frames)."""
         Fr = self.kin.F.ref
-        return [vel.diff(u, Fr, var_in_dcm=False) if vel != 0 else vel for u in self.rates]
+        return [vel.diff(u, Fr, var_in_dcm=False) if vel != 0 else vel for u in self.speeds]
 
     def _generalised(self, app, vector=None) -> sp.Matrix:
         """Generalised force of one application: ∂v_P/∂q̇_j · F (or ∂ω/∂q̇_j · T for a torque)."""
@@ -274,7 +292,7 @@ class ProjectedModel:
 
     def _raw_q(self, kind, t_, q, p):
         """(A, b, gaps, their Jacobian) at the configuration q (None where there are none)."""
-        out = list(self._function(kind, "q")(t_, *q, *([0] * len(self.coordinates)), *p))
+        out = list(self._function(kind, "q")(t_, *q, *([0] * len(self.speeds)), *p))
         if kind != "mpmath":
             out = [np.array(o, dtype=float) for o in out]
         A, b = (out[0], out[1]) if self._n_rows else (None, None)
@@ -299,21 +317,22 @@ class ProjectedModel:
         return out
 
     def rates_of(self, q, ui, t_: float = 0.0, kind: str = "numpy", values=None):
-        """All rates q̇ at the configuration ``q`` (all coordinates) for independent rates ``ui``."""
+        """All speeds u at the configuration ``q`` (all coordinates) for independent speeds ``ui`` (the
+        rates q̇ where the speeds are the rates; :meth:`coordinate_rates` gives q̇ = W(q) u)."""
         p = self._param_vector(kind, values)
         return self._rates(kind, t_, q, ui, p)
 
     def _rates(self, kind, t_, q, ui, p):
-        n = len(self.coordinates)
+        n = len(self.speeds)
         A, b, _, _ = self._raw_q(kind, t_, q, p)
         return _full_rates(kind, A, b, ui, self.independent_index, self.dependent_index, n)
 
     def accelerations(self, q, ui, t_: float = 0.0, kind: str = "numpy", values=None):
-        """(q̇ of every coordinate, u̇ of the independent rates) at the state (q, u_i)."""
+        """(every speed u, u̇ of the independent speeds) at the state (q, u_i)."""
         p = self._param_vector(kind, values)
         u = self._rates(kind, t_, q, ui, p)
         out = self._raw(kind, t_, q, list(u), p)
-        return u, _project(kind, out, self._bodies, len(self.coordinates), self.independent_index,
+        return u, _project(kind, out, self._bodies, len(self.speeds), self.independent_index,
                            self.dependent_index)[0]
 
     def mass_matrix(self, q, ui, t_: float = 0.0, kind: str = "numpy", values=None):
@@ -321,7 +340,7 @@ class ProjectedModel:
         p = self._param_vector(kind, values)
         u = self._rates(kind, t_, q, ui, p)
         out = self._raw(kind, t_, q, list(u), p)
-        return _project(kind, out, self._bodies, len(self.coordinates), self.independent_index,
+        return _project(kind, out, self._bodies, len(self.speeds), self.independent_index,
                         self.dependent_index)[1]
 
     def gaps(self, q, t_: float = 0.0, kind: str = "numpy", values=None):
@@ -330,22 +349,90 @@ class ProjectedModel:
         _, _, g, J = self._raw_q(kind, t_, q, p)
         return g, J
 
-    def rhs(self, values=None, backend: str = "numpy"):
-        """f(t, y) for y = (q of every coordinate, u_i): dy/dt = (q̇, u̇_i), for scipy's solve_ivp.
+    def coordinate_rates(self, q, u, t_: float = 0.0, kind: str = "numpy", values=None):
+        """q̇ = W(q) u of every coordinate, for every speed ``u`` (no stabilisation term)."""
+        p = self._param_vector(kind, values)
+        return self._qdot(kind, t_, q, u, p)
 
-        ``backend``: "numpy" (lambdify with CSE) or "c" (generated C, rigidkin.numeric.codegen)."""
+    def _qdot(self, kind, t_, q, u, p):
+        key = (kind, "qdot")
+        if key not in self._fn:
+            exprs = self._sym(sp.Matrix(self.kinematic.rate_expressions()))
+            self._fn[key] = sp.lambdify(self._args, exprs, modules="mpmath" if kind == "mpmath" else "numpy",
+                                        cse=True)
+        out = self._fn[key](t_, *q, *u, *p)
+        if kind == "mpmath":
+            return [out[i] for i in range(len(self.coordinates))]
+        return np.ravel(np.array(out, dtype=float))
+
+    def quaternion_slots(self) -> tuple:
+        """For each frame oriented by Euler parameters, the slots of (e0, e1, e2, e3) in q."""
+        return tuple(tuple(self.coordinates.index(e) for e in g.coordinates)
+                     for g in self.kinematic.groups if g.kind == "quaternion")
+
+    def rhs(self, values=None, backend: str = "numpy", stabilise: bool = True):
+        """f(t, y) for y = (q of every coordinate, u_i): dy/dt = (W(q) u, u̇_i), for scipy's solve_ivp.
+
+        ``backend``: "numpy" (lambdify with CSE) or "c" (generated C, rigidkin.numeric.codegen).
+        ``stabilise``: Euler parameters get ė += k (1 − |e|²) e (k = ``model.speeds.STABILISATION`` times
+        the largest |u|, at least 1/s), which holds |e| at 1 without changing the rotation."""
         if backend not in ("numpy", "c"):
             raise ModelError(f"unknown backend {backend!r}.", where="rhs", hint="Use 'numpy' or 'c'.")
         p = self._param_vector("numpy", values)
         n = len(self.coordinates)
+        slots = [list(s) for s in self.quaternion_slots()] if stabilise else []
 
         def f(t_, y):
             u = self._rates(backend, t_, y[:n], y[n:], p)
             out = self._raw(backend, t_, y[:n], list(u), p)
-            ud = _project(backend, out, self._bodies, n, self.independent_index, self.dependent_index)[0]
-            return np.concatenate([u, ud])
+            ud = _project(backend, out, self._bodies, len(self.speeds), self.independent_index,
+                          self.dependent_index)[0]
+            qd = self._qdot("numpy", t_, y[:n], u, p) if not self.kinematic.trivial else np.asarray(u, dtype=float)
+            if slots:
+                k = STABILISATION * max(1.0, float(np.max(np.abs(u))) if len(u) else 1.0)
+                for sl in slots:
+                    e = y[sl]
+                    qd[sl] = qd[sl] + k * (1.0 - float(e @ e)) * e
+            return np.concatenate([qd, ud])
 
         return f
+
+    def state_matrix(self, q, ui, coordinates: Sequence, speeds: Sequence, values=None, dps: int = 40,
+                     step: float = 1e-15) -> np.ndarray:
+        """A of d/dt (δq, δu) = A (δq, δu) about the state (q, u_i), over ``coordinates`` (any of q) and
+        ``speeds`` (independent speeds, named as in :attr:`independent`): the whole first-order system
+        q̇ = W(q) u, u̇_i = …, differentiated by central differences in ``dps`` digits (mpmath).  The
+        holonomic dependent coordinates follow each perturbation; the other state entries are held.
+        It holds for any choice of speeds (its eigenvalues do not depend on the choice)."""
+        cs = [self.coordinates.index(c) for c in coordinates]
+        ss = [self.independent.index(s_) for s_ in speeds]
+        with mpmath.workdps(dps):
+            h = mpmath.mpf(step)
+            p = self._param_vector("mpmath", values)
+            q0 = self.configuration([mpmath.mpf(sp.Float(sp.sympify(x), dps + 5)) for x in q], kind="mpmath",
+                                    values=values)
+            u0 = [mpmath.mpf(sp.Float(sp.sympify(x), dps + 5)) for x in ui]
+
+            def f(qq, uu):
+                u, ud = self.accelerations(qq, uu, kind="mpmath", values=values)
+                qd = self._qdot("mpmath", 0, qq, list(u), p)
+                return [qd[i] for i in cs] + [ud[j] for j in ss]
+
+            cols = []
+            for i in cs:
+                qp, qm = list(q0), list(q0)
+                qp[i] += h
+                qm[i] -= h
+                fp = f(self.configuration(qp, kind="mpmath", values=values), u0)
+                fm = f(self.configuration(qm, kind="mpmath", values=values), u0)
+                cols.append([(a - b) / (2 * h) for a, b in zip(fp, fm)])
+            for j in ss:
+                up, um = list(u0), list(u0)
+                up[j] += h
+                um[j] -= h
+                fp, fm = f(q0, up), f(q0, um)
+                cols.append([(a - b) / (2 * h) for a, b in zip(fp, fm)])
+            return np.array([[float(c[r]) for c in cols] for r in range(len(cols))])
 
     # configuration --------------------------------------------------------------------------------
     def holonomic_coordinates(self) -> tuple:
@@ -357,7 +444,13 @@ class ProjectedModel:
         _, J = self.gaps(q)
         J = np.atleast_2d(J)
         chosen: list[int] = []
-        for i in reversed(self.dependent_index):
+        # the coordinates whose rate is a dependent speed first, then those whose speeds are replaced
+        named = [self.coordinates.index(self._speed_names[i]) for i in self.dependent_index
+                 if self._speed_names[i] in self.coordinates]
+        free = set(self.independent)
+        named += [i for i in range(len(self.coordinates)) if i not in named and self.coordinates[i] not in free
+                  and self.coordinates[i] in self.kinematic.replaced]
+        for i in reversed(named):
             trial = chosen + [i]
             if np.linalg.matrix_rank(J[:, trial], tol=1e-9) == len(trial):
                 chosen = trial
@@ -410,7 +503,7 @@ class ProjectedModel:
             except (RigidkinError, np.linalg.LinAlgError):
                 continue
             out = self._raw("numpy", 0.0, q, list(u), p)
-            Tm = _partials("numpy", out[-5], self.independent_index, self.dependent_index, n)
+            Tm = _partials("numpy", out[-5], self.independent_index, self.dependent_index, len(self.speeds))
             if self._reaction_cols is None:
                 return
             cols = np.array(sp.lambdify(self._args, self._reaction_cols, modules="numpy", cse=True)(0.0, *q, *u, *p),
@@ -473,98 +566,3 @@ class ProjectedModel:
             tonp = lambda X: np.array([[float(X[r, c]) for c in range(X.cols)] for r in range(X.rows)])  # noqa: E731
             return Linearisation(self.independent, tuple(pert), tonp(M), tonp(Cmat),
                                  tonp(Kmat) if pert else np.zeros((k, 0)))
-
-
-# numeric assembly ----------------------------------------------------------------------------------
-def _vec(v, frame) -> sp.Matrix:
-    return sp.zeros(3, 1) if v == 0 else v.to_matrix(frame)
-
-
-def _solve(kind, A, b):
-    if kind == "mpmath":
-        return mpmath.lu_solve(A, b)
-    return np.linalg.solve(A, b)
-
-
-def _cols(kind, A, idx):
-    if kind == "mpmath":
-        return mpmath.matrix([[A[r, c] for c in idx] for r in range(A.rows)])
-    return A[:, list(idx)]
-
-
-def _full_rates(kind, A, b, ui, ind, dep, n):
-    u = [0] * n if kind == "mpmath" else np.zeros(n)
-    for k, i in enumerate(ind):
-        u[i] = ui[k]
-    if dep:
-        Ai, Ad = _cols(kind, A, ind), _cols(kind, A, dep)
-        if kind == "mpmath":
-            rhs = -(Ai * mpmath.matrix(list(ui)) + b)
-        else:
-            rhs = -(Ai @ np.asarray(ui, dtype=float) + np.ravel(b))
-        ud = _solve(kind, Ad, rhs)
-        for k, i in enumerate(dep):
-            u[i] = ud[k]
-    return u
-
-
-def _partials(kind, A, ind, dep, n):
-    """T (n × k): the rates of all coordinates per unit independent rate."""
-    k = len(ind)
-    if kind == "mpmath":
-        T = mpmath.matrix(n, k)
-        for c, i in enumerate(ind):
-            T[i, c] = 1
-        if dep:
-            X = mpmath.inverse(_cols(kind, A, dep)) * (-_cols(kind, A, ind))
-            for r, i in enumerate(dep):
-                for c in range(k):
-                    T[i, c] = X[r, c]
-        return T
-    T = np.zeros((n, k))
-    T[list(ind), range(k)] = 1.0
-    if dep:
-        T[list(dep), :] = np.linalg.solve(A[:, list(dep)], -A[:, list(ind)])
-    return T
-
-
-def _project(kind, out, bodies, n, ind, dep):
-    """(u̇_i, projected mass matrix) from the evaluated pieces."""
-    Q, A, _b, c0 = out[-6], out[-5], out[-4], out[-3]
-    if kind == "mpmath":
-        Mf = mpmath.matrix(n, n)
-        ff = mpmath.matrix(Q) if Q is not None else mpmath.matrix(n, 1)
-        for _, s in bodies:
-            m, Jv, a0, Jw, JH, h0 = out[s:s + 6]
-            m = m[0, 0]
-            Mf += m * (Jv.T * Jv) + Jw.T * JH
-            ff -= m * (Jv.T * a0) + Jw.T * h0
-    else:
-        Mf = np.zeros((n, n))
-        ff = np.ravel(Q).astype(float).copy()
-        for _, s in bodies:
-            m, Jv, a0, Jw, JH, h0 = out[s:s + 6]
-            m = float(np.ravel(m)[0])
-            Mf += m * (Jv.T @ Jv) + Jw.T @ JH
-            ff -= m * (Jv.T @ np.ravel(a0)) + Jw.T @ np.ravel(h0)
-    T = _partials(kind, A, ind, dep, n)
-    if dep:
-        # particular accelerations: independent part zero, dependent part from A q̈ + c0 = 0
-        if kind == "mpmath":
-            xd = mpmath.lu_solve(_cols(kind, A, dep), -c0)
-            qp = mpmath.matrix(n, 1)
-            for r, i in enumerate(dep):
-                qp[i] = xd[r]
-        else:
-            xd = np.linalg.solve(A[:, list(dep)], -np.ravel(c0))
-            qp = np.zeros(n)
-            qp[list(dep)] = xd
-    else:
-        qp = mpmath.matrix(n, 1) if kind == "mpmath" else np.zeros(n)
-    if kind == "mpmath":
-        Mr = T.T * Mf * T
-        fr = T.T * (ff - Mf * qp)
-        return mpmath.lu_solve(Mr, fr), Mr
-    Mr = T.T @ Mf @ T
-    fr = T.T @ (ff - Mf @ qp)
-    return np.linalg.solve(Mr, fr), Mr
