@@ -4,7 +4,8 @@ Every combination of the ``--param`` axes (parameters, or initial values such as
 ``dot(theta)``) is one run; ``--set`` and ``--initial`` fix the others.  Each run is integrated in
 compiled code until ``--stop-at`` (a reaction reaching zero, ``N_A``, or a state value,
 ``theta=1.2``; by default the first unilateral contact that stops pushing) or ``--t-end``.  The table
-has one row per run: its parameters, each event's time and state, its final state.
+has one row per run: its parameters, each event's time and state, its final state; it is written as
+CSV, or as Parquet when ``-o`` names a ``.parquet`` file (pyarrow).
 ``--workers N`` runs on a local Dask cluster, ``--scheduler ADDRESS`` on a remote one.
 """
 
@@ -37,7 +38,9 @@ def register(sub) -> None:
                    help="further events to record without stopping")
     p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="the mode to integrate: open, slip or stick per contact (default: all closed)")
-    p.add_argument("-o", "--output", required=True, metavar="CSV", help="the table of runs")
+    p.add_argument("-o", "--output", required=True, metavar="TABLE",
+                   help="the table of runs: CSV, or Parquet for a .parquet or .pq file (needs pyarrow: "
+                        "pip install 'rigidkin[parquet]')")
     p.add_argument("--plot", metavar="PNG", help="a figure of the first event's time against the first axis")
     p.add_argument("--rtol", type=tolerance, default=1e-10, help="relative tolerance (default 1e-10)")
     p.add_argument("--atol", type=tolerance, default=1e-12, help="absolute tolerance (default 1e-12)")
@@ -83,12 +86,15 @@ def parse_axis(text: str, where: str):
 def run(args) -> int:
     from ..numeric.figure import figure_formats
     from ..numeric.sweep import check_size, sweep
+    from ..numeric.tables import require_parquet, table_format
     from ..outfile import check_target
     from ..textsafe import terminal_safe
     from .common import guarded, load_system
     from .deadline import set_step
 
     check_target(args.output, "the sweep table")
+    if table_format(args.output) == "parquet":
+        require_parquet(args.output, "the sweep table")        # said before anything is derived or run
     if args.plot:
         check_target(args.plot, "the figure", figure_formats())
     vary = {name: parse_axis(v, f"--param {name}") for name, v in _pairs(args.param, "--param").items()}
@@ -108,15 +114,11 @@ def run(args) -> int:
         progress.close()
     elapsed = time.perf_counter() - start
     set_step("Writing the table")
-    res.to_csv(args.output)
+    res.write(args.output)
     say = _safe_print(terminal_safe)
-    counts = {}
-    from ..numeric.batch import STATUS
-
-    for s in res.status:
-        counts[STATUS[int(s)]] = counts.get(STATUS[int(s)], 0) + 1
+    counts = _status_counts(res.status)
     say(f"{len(res)} runs of {system.name} ({res.backend}) in {elapsed:.3g} s: "
-          + ", ".join(f"{v} {k}" for k, v in counts.items()))
+        + ", ".join(f"{v} {k}" for k, v in counts.items()))
     for k, name in enumerate(res.result.event_names):
         hit = int((~_isnan(res.result.event_t[:, k])).sum())
         say(f"  event {name}: {hit} of {len(res)} runs")
@@ -128,6 +130,16 @@ def run(args) -> int:
     if bad:
         say(f"rigidkin: warning: some runs ended early ({', '.join(bad)}); see the status column.", file=sys.stderr)
     return 0
+
+
+def _status_counts(status) -> dict[str, int]:
+    """How many runs ended in each way, in the order of the status codes."""
+    import numpy as np
+
+    from ..numeric.batch import STATUS
+
+    codes, counts = np.unique(np.asarray(status, dtype=int), return_counts=True)
+    return {STATUS.get(c, f"status {c}"): n for c, n in zip(codes.tolist(), counts.tolist())}
 
 
 def _safe_print(safe):
