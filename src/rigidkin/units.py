@@ -12,8 +12,6 @@ import re
 from dataclasses import dataclass
 from functools import lru_cache
 
-import pint
-
 from .errors import InputError
 
 _BASES = ("mass", "length", "time", "current", "temperature", "substance", "luminosity")
@@ -22,8 +20,11 @@ _SYMBOLS = {"mass": "M", "length": "L", "time": "T", "current": "I", "temperatur
 
 
 @lru_cache(maxsize=1)
-def registry() -> pint.UnitRegistry:
-    """The one unit registry rigidkin uses."""
+def registry() -> pint.UnitRegistry:  # noqa: F821
+    """The one unit registry rigidkin uses (pint imported here: it is slow to import and most commands
+    run from the derivation cache never read a unit)."""
+    import pint
+
     return pint.UnitRegistry()
 
 

@@ -35,14 +35,27 @@ def load_system(problem: str):
                         hint=f"Bundled examples: {', '.join(examples.names())}. Run 'rigidkin list'.")
 
 
+def open_problem(args):
+    """The problem of ``args.problem`` as a :class:`rigidkin.derivation_cache.Derivation`: read from the
+    derivation cache when it was derived before (unless ``--no-cache``), else loaded from its file."""
+    from ..derivation_cache import Derivation
+
+    return Derivation(args.problem, lambda: load_system(args.problem), use=not getattr(args, "no_cache", False))
+
+
 @contextmanager
 def progress(message: str, delay: float = 1.0):
     """Show a rich status line on a terminal's stderr when the step takes longer than ``delay`` seconds."""
-    from rich.console import Console
+    import sys
 
     from .deadline import set_step
 
     set_step(message)
+    if not _is_terminal(sys.stderr):            # rich (slow to import) only where something is shown
+        yield
+        return
+    from rich.console import Console
+
     console = Console(stderr=True)
     if not console.is_terminal:
         yield
@@ -67,6 +80,13 @@ def progress(message: str, delay: float = 1.0):
             state["done"] = True
             if state["started"]:
                 status.stop()
+
+
+def _is_terminal(stream) -> bool:
+    try:
+        return stream.isatty()
+    except (AttributeError, ValueError, OSError):
+        return False
 
 
 class TimeLimit(RigidkinError):

@@ -127,6 +127,13 @@ def add_timeout(p, default: float = 600) -> None:
                         f"{MAX_TIMEOUT:g}); exit status 4")
 
 
+def add_no_cache(p) -> None:
+    """The ``--no-cache`` option: derive afresh, neither reading nor writing the derivation cache."""
+    p.add_argument("--no-cache", action="store_true",
+                   help="derive afresh: neither read nor write the derivation cache (RIGIDKIN_NO_CACHE=1 does the "
+                        "same for every command; the cache is in $RIGIDKIN_CACHE or ~/.cache/rigidkin/derivations)")
+
+
 def parse_modes(items) -> dict:
     """``--mode CONTACT=STATE ...`` → {contact: state} (states: open, slip, stick)."""
     from ..errors import InputError

@@ -8,7 +8,7 @@ from .options import EXIT_UNANSWERED, parse_modes
 
 
 def register(sub) -> None:
-    from .options import add_timeout
+    from .options import add_no_cache, add_timeout
 
     p = sub.add_parser("solve", help="derive the equations of motion, reactions and answers")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
@@ -24,18 +24,24 @@ def register(sub) -> None:
     p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="the state of a contact: open, slip or stick (repeatable); a mode at rest (every "
                         "contact sticking) gives the reactions of statics")
+    add_no_cache(p)
     add_timeout(p)
     p.set_defaults(func=run)
 
 
-def answer_questions(system, spec, args) -> tuple[dict, list[str]]:
-    """Answer the file's questions in order; a question that cannot be answered gets its reason."""
+def answer_questions(system, spec, args, derived=None) -> tuple[dict, list[str]]:
+    """Answer the file's questions in order; a question that cannot be answered gets its reason.
+
+    With ``derived`` (a :class:`rigidkin.derivation_cache.Derivation`) the answers are read from it when
+    cached, and kept in it when every question was answered."""
     from ..errors import RigidkinError
     from .common import guarded, progress
 
     questions = spec.questions if spec is not None else ()
     if not questions or args.no_answers:
         return {}, []
+    if derived is not None and derived.answers is not None:
+        return dict(derived.answers), []
     try:
         from ..analysis.answers import answer
     except ImportError:
@@ -51,6 +57,8 @@ def answer_questions(system, spec, args) -> tuple[dict, list[str]]:
             continue
         context[q.name] = a
         answers[q.name] = a
+    if derived is not None and not any(isinstance(a, str) for a in answers.values()):
+        derived.answers = dict(answers)        # a failed answer (a time limit, say) is not kept
     return answers, []
 
 
@@ -111,16 +119,17 @@ def run(args) -> int:
     from ..io.results import solution_data
     from ..report.text import problem_text
     from ..textsafe import terminal_safe
-    from .common import guarded, json_safe, load_system, progress, with_file
+    from .common import guarded, json_safe, open_problem, progress, with_file
 
     with progress(f"Reading {args.problem}"):
-        system, spec = guarded(args, load_system, args.problem)
+        derived = guarded(args, open_problem, args)
+    system, spec = derived.system, derived.spec
     try:
         with progress(f"Deriving the equations of motion ({args.method})"):
             sol = guarded(args, system.solve, method=args.method, mode=parse_modes(args.mode))
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
-    answers, notes = answer_questions(system, spec, args)
+    answers, notes = answer_questions(system, spec, args, derived)
     try:
         with progress("Writing the solution"):
             if args.format == "json":
@@ -133,5 +142,6 @@ def run(args) -> int:
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
     print(text)
+    derived.save()              # after the output: what printing computed (the power check) is kept too
     unanswered = [name for name, a in answers.items() if isinstance(a, str)]
     return EXIT_UNANSWERED if unanswered else 0

@@ -11,13 +11,11 @@ from __future__ import annotations
 
 import difflib
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..analysis.questions import Question
 from ..errors import InputError, ModelError, RigidkinError
 from ..model.checks import REAL, check_problem_name, generated_clash, problem_name, require
 from ..model.shapes import SHAPES
@@ -42,33 +40,13 @@ from .reading import (  # noqa: F401  (public through here)
     read_toml,
     validate_schema,
 )
+from .spec import ProblemSpec
 
 _UNIT_QUANTITY = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*[A-Za-z°µ]")
 _NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
 _FRICTION_WORDS = ("smooth", "rolling", "no-slip", "no_slip")
 
 
-@dataclass
-class ProblemSpec:
-    """What a problem file says beyond the system: its source, and what it asks."""
-
-    path: Path
-    name: str
-    title: str
-    statement: str
-    eom: bool = True
-    reactions: tuple[str, ...] | None = None
-    questions: tuple[Question, ...] = ()
-    scope: Scope = field(default_factory=default_scope, repr=False)
-    locator: Locator | None = field(default=None, repr=False)
-    data: S.ProblemFile | None = field(default=None, repr=False)
-
-    def where(self, *path) -> str:
-        """``"file.toml, line 12, bodies.rod.at"`` for a field path."""
-        return self.locator.where(path) if self.locator else str(self.path)
-
-
-# building -----------------------------------------------------------------------------------------------
 class _Builder(ConstraintsAndLoads, Questions):
     def __init__(self, spec: S.ProblemFile, locator: Locator, name: str):
         self.spec, self.loc = spec, locator
