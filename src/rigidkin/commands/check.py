@@ -13,7 +13,7 @@ import json
 
 
 def register(sub) -> None:
-    from .options import add_timeout
+    from .options import add_no_cache, add_timeout
 
     p = sub.add_parser("check", help="cross-check the equations of motion by every law, and their dimensions")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
@@ -27,6 +27,7 @@ def register(sub) -> None:
                    help="the state of a contact: open, slip or stick (repeatable)")
     p.add_argument("--no-dimensions", action="store_true", help="skip the dimensional analysis")
     p.add_argument("--format", default="text", choices=("text", "json"), help="output format")
+    add_no_cache(p)
     add_timeout(p)
     p.set_defaults(func=run)
 
@@ -46,11 +47,12 @@ def parse_expectation(text: str, system):
 def run(args) -> int:
     from ..printing import text
     from ..textsafe import terminal_safe
-    from .common import guarded, json_safe, load_system, progress, with_file
+    from .common import guarded, json_safe, open_problem, progress, with_file
     from .options import parse_modes
 
     with progress(f"Reading {args.problem}"):
-        system, spec = guarded(args, load_system, args.problem)
+        derived = guarded(args, open_problem, args)
+    system, spec = derived.system, derived.spec
     expected = [(e, parse_expectation(e, system)) for e in args.expect]
     laws = None if args.laws is None else [w.strip() for w in args.laws.split(",") if w.strip()]
     if laws is not None:
@@ -76,6 +78,7 @@ def run(args) -> int:
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
     print(out)
+    derived.save()
     return 0 if report.ok else 1
 
 

@@ -12,7 +12,7 @@ from ..textsafe import terminal_safe
 
 
 def register(sub) -> None:
-    from .options import add_timeout, end_time
+    from .options import add_no_cache, add_timeout, end_time
 
     p = sub.add_parser("report", help="write the step-by-step derivation as HTML, Markdown or LaTeX",
                        description="Write the derivation of a problem (frames, kinematics, free-body diagrams, "
@@ -35,6 +35,7 @@ def register(sub) -> None:
     p.add_argument("--no-animation", action="store_true", help="leave out the animation")
     p.add_argument("--no-checks", action="store_true", help="do not run the cross-check by other laws")
     p.add_argument("--no-answers", action="store_true", help="do not answer the problem file's questions")
+    add_no_cache(p)
     add_timeout(p)
     p.set_defaults(func=run)
 
@@ -61,7 +62,7 @@ def run(args) -> int:
     from ..outfile import OutputError, check_target, writing
     from ..report.document import Animation, build_document
     from ..report.output import format_of, write_document
-    from .common import guarded, load_system, progress, with_file
+    from .common import guarded, open_problem, progress, with_file
     from .solve import answer_questions
 
     fmt = format_of(args.output)
@@ -81,11 +82,12 @@ def run(args) -> int:
     params = _pairs(args.set, "report --set")
     initial = _pairs(args.initial, "report --initial")
     with progress(f"Reading {args.problem}"):
-        system, spec = guarded(args, load_system, args.problem)
+        derived = guarded(args, open_problem, args)
+    system, spec = derived.system, derived.spec
     try:
         with progress(f"Deriving the equations of motion ({args.method})"):
             solution = guarded(args, system.solve, method=args.method, mode=mode)
-        answers, _ = answer_questions(system, spec, args)
+        answers, _ = answer_questions(system, spec, args, derived)
         result = None
         if args.simulate is not None:
             from ..numeric.simulate import simulate
@@ -101,6 +103,7 @@ def run(args) -> int:
                           parameters=_numbers(params, "report --set") or None)
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
+    derived.save()
     try:
         path = write_document(doc, args.output)
     except OSError as exc:

@@ -18,7 +18,7 @@ from ..errors import InputError
 
 
 def register(sub) -> None:
-    from .options import add_timeout, end_time, points, start_time, tolerance
+    from .options import add_no_cache, add_timeout, end_time, points, start_time, tolerance
 
     p = sub.add_parser("simulate", help="simulate the motion, switching contact and friction modes exactly",
                        description="Simulate a problem through its contact modes (contacts opening, impacts, "
@@ -42,6 +42,7 @@ def register(sub) -> None:
     p.add_argument("--rtol", type=tolerance, default=1e-11, help="relative tolerance (default 1e-11)")
     p.add_argument("--atol", type=tolerance, default=1e-13, help="absolute tolerance (default 1e-13)")
     p.add_argument("--method", default="DOP853", help="solve_ivp method: DOP853 (default) or Radau, BDF, …")
+    add_no_cache(p)
     add_timeout(p)
     p.set_defaults(func=run)
 
@@ -137,7 +138,7 @@ def run(args) -> int:
     from ..numeric.rhs import SimulationError
     from ..outfile import check_target
     from ..textsafe import terminal_safe
-    from .common import guarded, json_safe, load_system
+    from .common import guarded, json_safe, open_problem
     from .deadline import set_step
     from .options import EXIT_STOPPED
 
@@ -152,7 +153,8 @@ def run(args) -> int:
     initial = _pairs(args.initial, "--initial")
     mode = _pairs(args.mode, "--mode")
     restitution = _restitution(args.restitution)
-    system, _ = guarded(args, load_system, args.problem)
+    derived = guarded(args, open_problem, args)
+    system = derived.system
     check_points(system, args.points)
     progress = _Progress(sys.stderr.isatty() and not args.json)
     set_step(f"Simulating to t = {args.t_end:g} s")
@@ -164,10 +166,12 @@ def run(args) -> int:
                              rtol=args.rtol, atol=args.atol, n_points=args.points, progress=progress)
         except SimulationError as exc:
             print(f"rigidkin: the model cannot go on: {terminal_safe(exc)}", file=sys.stderr)
+            derived.save()
             return EXIT_STOPPED
         finally:
             progress.close()
     del caught
+    derived.save()
     set_step("Writing the histories and the figure")
     if args.csv:
         result.write_csv(args.csv)

@@ -18,7 +18,7 @@ from ..errors import InputError
 
 
 def register(sub) -> None:
-    from .options import add_timeout, chunk, end_time, threads, tolerance, workers
+    from .options import add_no_cache, add_timeout, chunk, end_time, threads, tolerance, workers
 
     p = sub.add_parser("sweep", help="simulate over a grid of parameters and initial values (compiled, parallel)",
                        description="Simulate one problem over a grid of parameter values and initial states, in "
@@ -51,6 +51,7 @@ def register(sub) -> None:
     p.add_argument("--chunk", type=chunk, default=None, metavar="RUNS", help="runs per task (default: automatic)")
     p.add_argument("--backend", choices=("auto", "c", "numpy"), default="auto",
                    help="generated code: C (compiled here) or numpy (default: C when a compiler is present)")
+    add_no_cache(p)
     add_timeout(p)
     p.set_defaults(func=run)
 
@@ -89,7 +90,7 @@ def run(args) -> int:
     from ..numeric.tables import require_parquet, table_format
     from ..outfile import check_target
     from ..textsafe import terminal_safe
-    from .common import guarded, load_system
+    from .common import guarded, open_problem
     from .deadline import set_step
 
     check_target(args.output, "the sweep table")
@@ -98,7 +99,8 @@ def run(args) -> int:
     if args.plot:
         check_target(args.plot, "the figure", figure_formats())
     vary = {name: parse_axis(v, f"--param {name}") for name, v in _pairs(args.param, "--param").items()}
-    system, _ = guarded(args, load_system, args.problem)
+    derived = guarded(args, open_problem, args)
+    system = derived.system
     runs = check_size(system, vary, events=len(args.stop_at) + len(args.record) + 2 * len(system.constraints) + 2)
     set_step(f"Sweeping {runs:,} runs")
     scheduler = args.scheduler or ("local" if args.workers else None)
@@ -113,6 +115,7 @@ def run(args) -> int:
     finally:
         progress.close()
     elapsed = time.perf_counter() - start
+    derived.save()
     set_step("Writing the table")
     res.write(args.output)
     say = _safe_print(terminal_safe)
