@@ -103,7 +103,8 @@ def readable(expr: sp.Basic) -> sp.Basic:
     key = plain
     hit = _READABLE_CACHE.get(key)
     if hit is None:
-        hit = _readable_plain(plain)
+        from .trigforms import compact  # the shortest trig form (M + m sin²α), for reading
+        hit = compact(_readable_plain(plain))
         if len(_READABLE_CACHE) > 20000:
             _READABLE_CACHE.clear()
         _READABLE_CACHE[key] = hit
