@@ -25,8 +25,31 @@ STATUS = {0: "reached the end time", 1: "terminal event", 2: "non-finite state",
           4: "too many steps", 5: "step size too small", 6: "no regime fits the initial state"}
 
 
+def _dop853_coefficients():
+    """scipy's module of DOP853 coefficients, read from its file without importing ``scipy.integrate`` (whose
+    package import costs most of a second and is not needed to run compiled code)."""
+    import importlib.util
+    import sys
+    from pathlib import Path
+
+    name = "scipy.integrate._ivp.dop853_coefficients"
+    if name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.find_spec("scipy")
+    for folder in (spec.submodule_search_locations or []) if spec else []:
+        path = Path(folder, "integrate", "_ivp", "dop853_coefficients.py")
+        if path.is_file():
+            module_spec = importlib.util.spec_from_file_location("rigidkin._scipy_dop853_coefficients", path)
+            module = importlib.util.module_from_spec(module_spec)
+            module_spec.loader.exec_module(module)
+            return module
+    import scipy.integrate._ivp.dop853_coefficients as d
+
+    return d
+
+
 def _coefficients_c() -> str:
-    from scipy.integrate._ivp import dop853_coefficients as d
+    d = _dop853_coefficients()
 
     def arr(name, a):
         a = np.asarray(a, dtype=float)
@@ -296,7 +319,16 @@ void rk_sweep(long n, const double *y0, const double *p, double t0, double t1, d
 }
 """
 
-INTEGRATOR_C = _coefficients_c() + _INTEGRATOR
+_LAZY: dict[str, str] = {}
+
+
+def __getattr__(name: str) -> str:
+    """``INTEGRATOR_C``, the integrator's C source (coefficients included), made on first use."""
+    if name == "INTEGRATOR_C":
+        if name not in _LAZY:
+            _LAZY[name] = _coefficients_c() + _INTEGRATOR
+        return _LAZY[name]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 INTEGRATOR_CDEF = """
 void rk_sweep(long n, const double *y0, const double *p, double t0, double t1, double rtol, double atol,
