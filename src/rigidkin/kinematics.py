@@ -16,14 +16,17 @@ from __future__ import annotations
 
 import random
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-import numpy as np
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
 from . import algebra
 from .errors import ConstraintError
 from .trace import Trace
+
+if TYPE_CHECKING:
+    import numpy as np
 
 t = dynamicsymbols._t
 
@@ -223,6 +226,8 @@ def _rates(coords):
 
 
 def _numeric_matrix(M: sp.Matrix, rng: random.Random) -> np.ndarray:
+    import numpy as np  # here: a derivation read from the cache needs no numpy
+
     plain, _ = algebra.plain_state(M)
     vals = algebra.random_point(plain.free_symbols - {t}, rng)
     vals[t] = sp.Float(0.37)
@@ -285,6 +290,8 @@ def solve_square(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, seed: in
 
 def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: Trace | None = None) -> Reduction:
     """Split constraint rows into built-in and rate-relating; eliminate dependent rates; integrate."""
+    import numpy as np
+
     coords = list(system.coordinates)
     built, relating, exprs = [], [], []
     for row in rows:
