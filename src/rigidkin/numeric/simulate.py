@@ -21,7 +21,6 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 import sympy as sp
-from scipy.integrate import solve_ivp
 from sympy.physics.vector import dynamicsymbols
 
 from ..errors import InputError
@@ -252,6 +251,8 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     t_now = t0
     zero_steps = 0
     report = (lambda tt: progress(tt, t1)) if progress is not None else None
+    from scipy.integrate import solve_ivp  # here: importing simulate stays quick (sweeps never need it)
+
     while t_now < t1:
         p = pvecs[ph]
         model = hyb.model(mode_, k)
