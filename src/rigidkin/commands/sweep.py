@@ -11,6 +11,7 @@ CSV, or as Parquet when ``-o`` names a ``.parquet`` file (pyarrow).
 
 from __future__ import annotations
 
+import re
 import sys
 import time
 
@@ -62,10 +63,25 @@ def _pairs(items, what) -> dict:
     return pairs(items, what)
 
 
-def parse_axis(text: str, where: str):
-    """``START:STOP:COUNT`` → (start, stop, count); ``V1,V2,…`` → a list; values may carry units."""
+_PLAIN_NUMBER = re.compile(r"[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?")
+
+
+def _value(text: str, where: str) -> float:
+    """A value of an axis: a plain number read as it is (no unit registry to load), else through
+    rigidkin's quantity parser (units, and every refusal: not finite, too large, not a quantity)."""
+    from ..units import MAX_MAGNITUDE
     from .common import value as quantity
 
+    plain = text.strip()
+    if _PLAIN_NUMBER.fullmatch(plain):
+        v = float(plain)
+        if abs(v) <= MAX_MAGNITUDE:
+            return v
+    return quantity(text, where)
+
+
+def parse_axis(text: str, where: str):
+    """``START:STOP:COUNT`` → (start, stop, count); ``V1,V2,…`` → a list; values may carry units."""
     text = text.strip()
     if ":" in text:
         parts = text.split(":")
@@ -77,8 +93,8 @@ def parse_axis(text: str, where: str):
             raise InputError(f"the count '{parts[2]}' is not a whole number.", where=where) from None
         if count < 1 or count > 10_000_000:
             raise InputError(f"the count {count} must be between 1 and 10^7.", where=where)
-        return quantity(parts[0], where), quantity(parts[1], where), count
-    values = [quantity(v, where) for v in text.split(",") if v.strip()]
+        return _value(parts[0], where), _value(parts[1], where), count
+    values = [_value(v, where) for v in text.split(",") if v.strip()]
     if not values:
         raise InputError(f"'{text}' gives no values.", where=where)
     return values
