@@ -41,46 +41,10 @@ from .kinematics import linear_form
 from .linear import solve_linear
 from .mode import ModeSetup
 from .printing import latex, text
-from .trace import Trace
+from .regime import Condition, Deferred, LazyMap, Regime  # noqa: F401 (Condition, LazyMap: re-exported)
+from .trace import LazyEquations, Trace
 
 t = dynamicsymbols._t
-
-
-@dataclass(frozen=True)
-class Condition:
-    """``expr`` ``relation`` 0, e.g. a slip speed > 0 or a normal reaction ≥ 0, with a description."""
-
-    expr: sp.Expr
-    relation: str
-    label: str
-    kind: str = "regime"    # "regime" (defines the regime) or "validity" (the solution holds while)
-
-    def holds(self, value: float, tol: float = 0.0) -> bool:
-        return {">": value > tol, ">=": value >= -tol, "<": value < -tol, "<=": value <= tol}[self.relation]
-
-    def __str__(self) -> str:
-        return f"{text(self.expr)} {self.relation.replace('>=', '≥').replace('<=', '≤')} 0   ({self.label})"
-
-
-@dataclass(frozen=True)
-class Regime:
-    """The equations of motion and reactions under one set of sign conditions.
-
-    ``reactions`` are functions of the state; with more than ``READABLE_DOF`` degrees of freedom they
-    are written in terms of the accelerations q̈ too (from M q̈ = f: ``Solution.reactions_at`` does it).
-    """
-
-    conditions: tuple[Condition, ...]
-    validity: tuple[Condition, ...]
-    signs: Mapping
-    eom: tuple
-    accelerations: Mapping
-    reactions: Mapping
-    mass_matrix: sp.Matrix
-    forcing: sp.Matrix
-
-    def describe(self) -> str:
-        return " and ".join(str(c) for c in self.conditions) or "always"
 
 
 @dataclass(frozen=True)
@@ -275,35 +239,6 @@ def solve_balance(setup: ModeSetup, equations, balances, method: str, trace: Tra
                     tuple(regimes), tuple(equations), trace, setup)
 
 
-class LazyMap(Mapping):
-    """A read-only mapping computed on first use (accelerations and reactions of large systems)."""
-
-    def __init__(self, compute):
-        self._compute, self._data = compute, None
-
-    def _get(self) -> dict:
-        if self._data is None:
-            self._data = dict(self._compute())
-            self._compute = None
-        return self._data
-
-    def __getitem__(self, key):
-        return self._get()[key]
-
-    def __iter__(self):
-        return iter(self._get())
-
-    def __len__(self):
-        return len(self._get())
-
-    @property
-    def computed(self) -> bool:
-        return self._data is not None
-
-    def __repr__(self) -> str:
-        return repr(self._data) if self._data is not None else "LazyMap(<not computed yet>)"
-
-
 def _solve_regime(setup, choices, equations, balances, unknowns, reactions, missing, sign_map, trace) -> Regime:
     kin, red = setup.kin, setup.reduction
     exprs = [e.expr.xreplace(sign_map) for e in equations]
@@ -323,14 +258,17 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
         react = {str(r): solved[r] for r in reactions}
         for r in missing:
             react[str(r)] = sp.Integer(0)
-        eom, M, f = _rows_to_eom(setup, raw_rows, reactions, solved, working)
-        _check_consistency(M, f, accels, red.independent)
+        M_raw, f_raw = _rows_to_mf(setup, raw_rows, reactions, solved, working)
+        _check_consistency(M_raw, f_raw, accels, red.independent)
         accel_map, react_map = MappingProxyType(accels), MappingProxyType(react)
         how = "all unknowns from the scalar equations at once."
     else:
-        eom, M, f = _rows_to_eom(setup, raw_rows, reactions, {}, working)
+        M_raw, f_raw = _rows_to_mf(setup, raw_rows, reactions, {}, working)
+        regime_box: list = []
 
         def accelerations():
+            repeatable()
+            M, f = regime_box[0].mass_matrix, regime_box[0].forcing
             return dict(zip(red.independent, solve_linear(M, f, simplify=kin.simplify_expr, symmetric=True)))
 
         def solved_reactions():
@@ -343,6 +281,7 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
                 [acc[q] for q in red.independent]) if accel_syms else -b      # 0 DOF: statics
             Al = A.extract(list(range(A.rows)), list(range(len(accel_syms), len(unknowns))))
             # determinate and consistent: checked for all the unknowns together above
+            repeatable()
             lam = solve_linear(Al, rhs, simplify=kin.simplify_expr)
             out = {str(r): v for r, v in zip(reactions, lam)}
             out.update({str(r): sp.Integer(0) for r in missing})
@@ -354,20 +293,39 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
                + (" (written in terms of q̈: with more than "
                   f"{READABLE_DOF} degrees of freedom the closed-form q̈ is too large to read)."
                   if len(accel_syms) > READABLE_DOF else "."))
-    conditions, validity = _conditions(setup, choices, sign_map, react_map)
+    conditions = _regime_conditions(setup, choices, sign_map, react_map)
+
+    @functools.cache
+    def readable():
+        repeatable()
+        return _readable_eom(setup, M_raw, f_raw)
+
+    def validity():
+        repeatable()
+        return tuple(_validity(setup, react_map))
+
+    regime = Regime(tuple(conditions), Deferred(validity), MappingProxyType(dict(sign_map)),
+                    Deferred(lambda: tuple(readable()[2])), accel_map, react_map, Deferred(lambda: readable()[0]),
+                    Deferred(lambda: readable()[1]), raw_mass_matrix=M_raw, raw_forcing=f_raw)
+    if not working:
+        regime_box.append(regime)
     if sign_map:
         trace.add("Solving", "Regime", [], " and ".join(str(c) for c in conditions))
-    if isinstance(accel_map, LazyMap) and not accel_map.computed:
-        trace.add("Solving", "Mass matrix and forcing", [(sp.Symbol("M"), M), (sp.Symbol("f"), f)], how)
+    jointly = isinstance(accel_map, MappingProxyType) or accel_map.computed or (
+        reactions and len(accel_syms) <= READABLE_DOF and _validity_reads_reactions(setup))
+    if not jointly:
+        trace.add("Solving", "Mass matrix and forcing",
+                  LazyEquations(lambda: [(sp.Symbol("M"), regime.mass_matrix), (sp.Symbol("f"), regime.forcing)]),
+                  how)
     else:
         trace.add("Solving", "Accelerations and reactions, solved jointly",
-                  [(q.diff(t, 2), a) for q, a in accel_map.items()]
-                  + [(sp.Symbol(k), v) for k, v in react_map.items()], how)
-    trace.add("Solving", "Equations of motion (reactions eliminated)", [(e, 0) for e in eom],
+                  LazyEquations(lambda: [(q.diff(t, 2), a) for q, a in accel_map.items()]
+                                + [(sp.Symbol(k), v) for k, v in react_map.items()]), how)
+    trace.add("Solving", "Equations of motion (reactions eliminated)",
+              LazyEquations(lambda: [(e, 0) for e in regime.eom]),
               "each body's balance weighted by the partial velocity of its mass centre and its partial "
               "angular velocity for each independent rate: workless reactions cancel.")
-    return Regime(tuple(conditions), tuple(validity), MappingProxyType(dict(sign_map)), tuple(eom),
-                  accel_map, react_map, M, f)
+    return regime
 
 
 def _projected_rows(setup, balances, sign_map):
@@ -418,27 +376,33 @@ def _working_reactions(rows, reactions) -> list:
 READABLE_DOF = 4
 
 
-def _rows_to_eom(setup, raw_rows, reactions, solved, working):
-    """Workless reactions dropped, working ones replaced by their solved values; M, f and readable rows."""
-    kin, red = setup.kin, setup.reduction
-    accels = [q.diff(t, 2) for q in red.independent]
+def _rows_to_mf(setup, raw_rows, reactions, solved, working):
+    """M and f as derived: workless reactions dropped, working ones replaced by their solved values."""
+    accels = [q.diff(t, 2) for q in setup.reduction.independent]
     working = set(working)
     subs = {r: (solved[r] if r in working else sp.Integer(0)) for r in reactions}
-    rows = [row.xreplace(subs) for row in raw_rows]
+    rows = [row.xreplace(subs) for row in raw_rows] if subs else list(raw_rows)
     A, b = linear_form(rows, accels)
+    return A, -b
+
+
+def _readable_eom(setup, M, f):
+    """M, f and the equations of motion simplified for reading (up to READABLE_DOF degrees of freedom)."""
+    kin, red = setup.kin, setup.reduction
+    accels = [q.diff(t, 2) for q in red.independent]
     small = len(accels) <= READABLE_DOF
-    M = A.applyfunc(kin.simplify_expr) if small else A
-    f = (-b).applyfunc(kin.simplify_expr) if small else -b
+    M = M.applyfunc(kin.simplify_expr) if small else M
+    f = f.applyfunc(kin.simplify_expr) if small else f
     ref = {k: v for k, v in kin.reference_values().items() if isinstance(k, sp.Symbol)}
     eom = []
-    for i in range(len(rows)):
+    for i in range(M.rows):
         e = sum((M[i, j] * accels[j] for j in range(len(accels))), sp.Integer(0)) - f[i]
         e = algebra.strip_factors(e) if small else e
         if len(accels) <= 4 and sp.count_ops(e) < 200:
             e = sp.collect(sp.expand(e), accels, func=sp.factor_terms)
         e = algebra.leading_sign(e, accels, ref) * e
         eom.append(e)
-    return eom, M, f
+    return M, f, eom
 
 
 def _check_consistency(M, f, accels, coords) -> None:
@@ -454,9 +418,10 @@ def _check_consistency(M, f, accels, coords) -> None:
                                 hint="This is a bug in rigidkin; please report the model.")
 
 
-def _conditions(setup, choices, sign_map, react):
+def _regime_conditions(setup, choices, sign_map, react):
+    """The conditions that define the regime: the sign of each slip speed (or reaction) chosen."""
     red = setup.reduction
-    conds, valid = [], []
+    conds = []
     for sc in choices:
         s = sign_map[sc.symbol]
         q = setup.scalar(sc.quantity) if sc.rate_based else react.get(str(sc.quantity), sc.quantity)
@@ -465,6 +430,24 @@ def _conditions(setup, choices, sign_map, react):
         if algebra.leading_sign(q, rates) < 0:   # read "ẋ > 0" rather than "−ẋ < 0"
             q, s = -q, -s
         conds.append(Condition(q, ">" if s > 0 else "<", sc.label))
+    return conds
+
+
+def _validity_reads_reactions(setup) -> bool:
+    """Whether the validity conditions are written with the reactions (so they solve for them)."""
+    if setup.unilateral:
+        return True
+    for c in setup.system.constraints.values():
+        if setup.states.get(c.name) == "stick" and hasattr(getattr(c, "friction", None), "mu"):
+            return True
+        if callable(getattr(c, "validity", None)) and setup.states.get(c.name) != "open":
+            return True
+    return False
+
+
+def _validity(setup, react):
+    """While the solution holds: unilateral reactions push, friction within µN, arcs and ropes' grips."""
+    valid = []
     for sym, row in setup.unilateral:
         if str(sym) in react:
             label = (f"{row.constraint} is taut (a cable can only pull)" if row.kind == "tension"
@@ -486,4 +469,4 @@ def _conditions(setup, choices, sign_map, react):
         extra = getattr(c, "validity", None)
         if callable(extra) and setup.states.get(c.name) != "open":
             valid.extend(Condition(m, ">=", label, "validity") for m, label in extra(setup, react))
-    return conds, valid
+    return valid
