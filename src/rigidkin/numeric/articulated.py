@@ -85,7 +85,7 @@ class ArticulatedModel:
                 exprs_g = [g * c for c in cs]
                 put(("gravity", len(gterms) - 1), exprs_g)
         self._gframes = gterms
-        for a, (b, arm, vec, kind) in enumerate(tr.applications):
+        for a, (_, arm, _, _) in enumerate(tr.applications):
             if arm is not None:
                 terms = _terms(arm, fi)
                 self._vec_terms[("arm", a)] = [f for f, _ in terms]
@@ -93,7 +93,7 @@ class ArticulatedModel:
         self._geometry = compile_functions(lay.arguments(), exprs)
         # loads and potentials: the part that changes with the state
         lexprs, self._lslots = [], []
-        for b, arm, vec, kind in tr.applications:
+        for _, _, vec, _ in tr.applications:
             terms = _terms(vec, fi)
             self._lslots.append((len(lexprs), [f for f, _ in terms]))
             lexprs.extend(lay.to_plain(c) for _, cs in terms for c in cs)
@@ -187,7 +187,7 @@ class ArticulatedModel:
         # joint degrees of freedom: parent node, the body they carry
         parent_node, attach = [], []
         last_of_body: dict = {}
-        for j, jt in enumerate(tr.joints):
+        for jt in tr.joints:
             above = last_of_body.get(jt.parent, -1) if jt.parent >= 0 else -1
             for k in jt.nodes:
                 parent_node.append(above)

@@ -225,6 +225,17 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     max_step = (t1 - t0) / 100 if max_step is None else float(max_step)   # no event hides inside one step
     if method not in METHODS:
         raise InputError(f"unknown integration method '{method}'.", where="simulate", hint=f"Use {', '.join(METHODS)}.")
+    from .large import numeric_route, simulate_tree      # past the symbolic limit: a tree of pins goes numeric
+    from .tree import NotATree
+
+    tree = numeric_route(system) if not phases and not mode else None
+    if tree is not None:
+        try:
+            return simulate_tree(system, tree, (t0, t1), initial_state, params, method=method, rtol=rtol, atol=atol,
+                                 max_step=max_step, n_points=n_points, energy_tol=energy_tol,
+                                 residual_tol=residual_tol, progress=progress)
+        except NotATree:
+            pass
     hyb = hybrid_of(system)
     lay: StateLayout = hyb.layout
     n = lay.n
