@@ -112,7 +112,7 @@ def _tamper_then_solve(cache, monkeypatch, capsys, change) -> list:
     entry = _entry(cache)
     change(entry)
     loads = _loads(monkeypatch)
-    _solve(capsys)
+    _solve(capsys, "--no-answers")
     return loads
 
 

@@ -1,3 +1,4 @@
+# PYTHON_ARGCOMPLETE_OK
 """The ``rigidkin`` command line.
 
 Each subcommand lives in its own module ``rigidkin.commands.<name>`` with a ``register(subparsers)``
@@ -6,6 +7,11 @@ function; this module only assembles them.  Every stop has an exit status that s
 input (one paragraph, never a traceback; ``--debug`` shows it), 3 a simulation stopped early because
 the model cannot go on, 4 the time limit, 130 interrupted.  Everything printed to the terminal that
 came from a file or the command line has its control characters escaped.
+
+Shell completion (argcomplete): ``eval "$(register-python-argcomplete rigidkin)"`` in ``~/.bashrc``
+or ``~/.zshrc`` completes subcommands, options, choices and the PROBLEM argument (bundled example
+names and ``.toml`` files).  Nothing heavy is imported to parse the line: each subcommand module
+imports what it uses when it runs.
 """
 
 from __future__ import annotations
@@ -13,6 +19,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import importlib
+import os
 import sys
 import warnings
 
@@ -39,7 +46,44 @@ def build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         module.register(sub)
+    for parser in sub.choices.values():
+        for action in parser._actions:
+            if action.dest == "problem":
+                action.completer = complete_problem
     return p
+
+
+def complete_problem(prefix: str = "", **_) -> list[str]:
+    """Shell completion of a PROBLEM: the bundled examples' names and the ``.toml`` files (and folders)
+    that start with ``prefix``."""
+    from . import examples
+
+    found = [n for n in examples.names() if n.startswith(prefix)]
+    folder, _, stem = prefix.rpartition("/")
+    try:
+        entries = sorted(os.scandir(folder or "."), key=lambda e: e.name)
+    except OSError:
+        entries = []
+    for e in entries:
+        if not e.name.startswith(stem) or (e.name.startswith(".") and not stem.startswith(".")):
+            continue
+        path = f"{folder}/{e.name}" if folder else e.name
+        if e.is_dir():
+            found.append(path + "/")
+        elif e.name.endswith(".toml"):
+            found.append(path)
+    return found
+
+
+def _complete(parser) -> None:
+    """Answer a shell's completion request (argcomplete sets ``_ARGCOMPLETE``) and exit; else nothing."""
+    if "_ARGCOMPLETE" not in os.environ:
+        return
+    try:
+        import argcomplete
+    except ImportError:                 # completion asked for but argcomplete not installed: complete nothing
+        sys.exit(0)
+    argcomplete.autocomplete(parser)
 
 
 def say(text: str) -> None:
@@ -50,6 +94,7 @@ def say(text: str) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run a command; ``argv`` None reads the program's arguments and arms the hard stop of ``--timeout``."""
     parser = build_parser()
+    _complete(parser)
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:            # a refused option (status 2, said on stderr) or --help (0)

@@ -251,7 +251,10 @@ def dumps(entry: dict) -> bytes | None:
     import copyreg
     import io
 
-    import cloudpickle
+    try:
+        import cloudpickle
+    except ImportError:                   # a dependency of rigidkin; without it nothing is kept
+        return None
 
     from .io.spec import ProblemSpec
 

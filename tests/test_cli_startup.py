@@ -1,0 +1,60 @@
+"""The command line starts quickly and completes in the shell.
+
+``--help`` and ``import rigidkin`` load none of the heavy libraries (each command imports what it uses
+when it runs); argcomplete answers a completion request with the subcommands, a subcommand's options
+and the bundled examples' names (its test variables: no shell needed).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+HEAVY = ("sympy", "numpy", "scipy", "matplotlib", "pydantic", "pint", "dask", "rich", "cloudpickle")
+
+
+def _modules_after(code: str) -> set[str]:
+    out = subprocess.run([sys.executable, "-c", code + "\nimport sys; print(' '.join(sys.modules))"],
+                         capture_output=True, text=True, timeout=60, check=True).stdout
+    return {m.split(".")[0] for m in out.split()}
+
+
+def test_help_and_import_load_no_heavy_library():
+    loaded = _modules_after("import contextlib, io\nfrom rigidkin.cli import main\n"
+                            "with contextlib.redirect_stdout(io.StringIO()): main(['--help'])\n"
+                            "with contextlib.redirect_stdout(io.StringIO()): main(['simulate', '--help'])")
+    assert not loaded & set(HEAVY), loaded & set(HEAVY)
+    assert not _modules_after("import rigidkin") & set(HEAVY)
+
+
+def test_the_public_names_still_load():
+    import rigidkin as rk
+
+    assert rk.System.__name__ == "System" and rk.shapes.SlenderRod and str(rk.t) == "t"
+    assert {"System", "shapes", "Solution"} <= set(dir(rk))
+    with pytest.raises(AttributeError):
+        rk.no_such_name  # noqa: B018
+
+
+def _complete(line: str, tmp_path) -> list[str]:
+    out = tmp_path / "completions"
+    env = {**os.environ, "_ARGCOMPLETE": "1", "COMP_LINE": line, "COMP_POINT": str(len(line)),
+           "_ARGCOMPLETE_STDOUT_FILENAME": str(out), "_ARGCOMPLETE_IFS": "\n"}
+    subprocess.run([sys.executable, "-m", "rigidkin"], env=env, cwd=tmp_path, timeout=60, check=True,
+                   capture_output=True)
+    return [w.strip() for w in out.read_text().split("\n") if w.strip()]
+
+
+def test_completion_of_subcommands_options_and_examples(tmp_path):
+    pytest.importorskip("argcomplete")
+    assert set(_complete("rigidkin s", tmp_path)) == {"solve", "simulate", "sweep"}
+    assert "--t-end" in _complete("rigidkin simulate ladder --t", tmp_path)
+    assert set(_complete("rigidkin solve --format ", tmp_path)) == {"text", "latex", "json"}
+    (tmp_path / "my_card.toml").write_text("")
+    (tmp_path / "notes.txt").write_text("")
+    words = _complete("rigidkin solve ", tmp_path)
+    assert {"ladder", "collar-rod", "my_card.toml"} <= set(words) and "notes.txt" not in words
+    assert _complete("rigidkin check lad", tmp_path) == ["ladder"]
