@@ -295,10 +295,18 @@ def plan(system, vary: Mapping | None = None, params: Mapping | None = None, ini
     return inputs, P, Y
 
 
+#: lambdify's namespace: numpy's own functions (``modules="numpy"`` would star-import numpy's every submodule,
+#: a tenth of a second at each command's start).
+_NUMPY = ({"numpy": np}, np)
+
+
 def _vector_eval(args, expr, columns, runs) -> np.ndarray:
-    f = sp.lambdify(args, expr, "numpy")
+    """``expr`` (of the layout's arguments) at every run at once."""
+    from .codesafe import safe_lambdify
+
+    f = safe_lambdify(args, [expr], modules=list(_NUMPY), cse=False, where="sweep")
     with np.errstate(all="ignore"):
-        return np.broadcast_to(np.asarray(f(*columns), dtype=float), (runs,)).copy()
+        return np.broadcast_to(np.asarray(f(*columns)[0], dtype=float), (runs,)).copy()
 
 
 def _condition_events(system, mode, regime: int, layout: StateLayout) -> list[StopAt]:
