@@ -25,10 +25,27 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.linalg as sla
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
 
 from .rhs import compile_functions
 from .state import StateLayout
 from .tree import NotATree, Tree, node_coefficients, read_tree
+
+
+t = dynamicsymbols._t
+
+
+def _inertia_matrix(body):
+    """The central inertia of ``body`` as a 3×3 matrix in its own frame (read term by term when every
+    term is written in that frame, as the shapes write them; otherwise through sympy's to_matrix)."""
+    I, ref = body.inertia, body.frame.ref
+    M = sp.zeros(3, 3)
+    for c, v1, v2 in I.args:
+        if len(v1.args) != 1 or len(v2.args) != 1 or v1.args[0][1] != ref or v2.args[0][1] != ref:
+            return list(I.to_matrix(ref))
+        M += c * v1.args[0][0] * v2.args[0][0].T
+    return list(M)
 
 
 def _skew(v):
@@ -58,10 +75,16 @@ class ArticulatedModel:
         fi = tr.frame_index
         # every expression the algorithm needs, in one compiled function of (t, q, q̇, p) ------------------
         exprs, self._slots = [], {}
+        qs, us = lay.plain_symbols()
+        plain = {c.diff(t): v for c, v in zip(lay.coordinates, us)}
+        plain.update(zip(lay.coordinates, qs))
+
+        def to_plain(e):
+            return sp.sympify(e).xreplace(plain)
 
         def put(key, items):
             self._slots[key] = (len(exprs), len(items))
-            exprs.extend(lay.to_plain(e) for e in items)
+            exprs.extend(to_plain(e) for e in items)
 
         E = len(tr.edges)
         put("axes", [a for e in tr.edges for a in e.axis])
@@ -71,7 +94,7 @@ class ArticulatedModel:
         self._ncoef = [(k, i, c) for k in range(len(tr.nodes)) for i, c in node_coefficients(tr, k).items()]
         put("ncoef", [c for _, _, c in self._ncoef])
         put("mass", [b.mass for b in tr.bodies])
-        put("inertia", [c for b in tr.bodies for c in b.inertia.to_matrix(b.frame.ref)])
+        put("inertia", [c for b in tr.bodies for c in _inertia_matrix(b)])
         self._vec_terms = {}
         for j, jt in enumerate(tr.joints):
             for what in ("to_pin", "to_centre"):
@@ -96,9 +119,9 @@ class ArticulatedModel:
         for _, _, vec, _ in tr.applications:
             terms = _terms(vec, fi)
             self._lslots.append((len(lexprs), [f for f, _ in terms]))
-            lexprs.extend(lay.to_plain(c) for _, cs in terms for c in cs)
+            lexprs.extend(to_plain(c) for _, cs in terms for c in cs)
         self._n_load = len(lexprs)
-        lexprs.extend(lay.to_plain(u) for u in tr.potentials)
+        lexprs.extend(to_plain(u) for u in tr.potentials)
         self._loads = compile_functions(lay.arguments(), lexprs) if lexprs else None
         self._E = E
         self._cache: dict = {}
@@ -168,11 +191,11 @@ class ArticulatedModel:
                 raise NotATree("a point the algorithm needs is not fixed in its body (" + str(key[0]) + ")")
             return out[0]
 
-        fb = [self.tree.frame_index[b.frame.ref] for b in tr.bodies]
+        fb = np.array([self.tree.frame_index[b.frame.ref] for b in tr.bodies], dtype=int)
         num["fb"] = fb
-        num["to_pin"] = [local(("to_pin", j), -1 if jt.parent < 0 else fb[jt.parent], vals)
-                         for j, jt in enumerate(tr.joints)]
-        num["to_centre"] = [local(("to_centre", j), fb[jt.body], vals) for j, jt in enumerate(tr.joints)]
+        num["to_pin"] = np.array([local(("to_pin", j), -1 if jt.parent < 0 else fb[jt.parent], vals)
+                                  for j, jt in enumerate(tr.joints)])
+        num["to_centre"] = np.array([local(("to_centre", j), fb[jt.body], vals) for j, jt in enumerate(tr.joints)])
         num["arm"] = {a: local(("arm", a), fb[b], vals) for a, (b, arm, _, _) in enumerate(tr.applications)
                       if arm is not None}
         num["mass"] = get(g, "mass")
@@ -194,9 +217,10 @@ class ArticulatedModel:
                 above = k
             last_of_body[jt.body] = above
             attach.append(above)
-        num["pnode"], num["attach"] = parent_node, attach
-        num["nbody"] = [tr.nodes[k].body for k in range(len(tr.nodes))]
-        num["before"] = [tr.nodes[k].before for k in range(len(tr.nodes))]
+        num["pnode"], num["attach"] = parent_node, np.array(attach, dtype=int)
+        num["jparent"] = [jt.parent for jt in tr.joints]
+        num["nbody"] = np.array([tr.nodes[k].body for k in range(len(tr.nodes))], dtype=int)
+        num["before"] = np.array([tr.nodes[k].before for k in range(len(tr.nodes))], dtype=int)
         num["naxis"] = np.array([[float(c) for c in tr.nodes[k].axis] for k in range(len(tr.nodes))])
         num["first"] = {jt.nodes[0]: j for j, jt in enumerate(tr.joints) if jt.nodes}
         return num
@@ -244,33 +268,35 @@ class ArticulatedModel:
         psi_d = np.bincount(num["nrow"], num["nval"] * u[num["ncol"]], minlength=len(tr.nodes))
         nb = len(tr.bodies)
         rG, rJ = np.empty((nb, 3)), np.empty((nb, 3))
-        for j, jt in enumerate(tr.joints):
-            if jt.parent < 0:
-                rJ[j] = num["to_pin"][j]
-            else:
-                rJ[j] = rG[jt.parent] + W[num["fb"][jt.parent]] @ num["to_pin"][j]
-            rG[j] = rJ[j] + W[num["fb"][j]] @ num["to_centre"][j]
-        nn = len(tr.nodes)
-        S, V, cacc = np.empty((nn, 6)), np.empty((nn, 6)), np.empty((nn, 6))
-        for k in range(nn):
-            s = W[num["before"][k]] @ num["naxis"][k]
-            Sk = np.concatenate([s, np.cross(rJ[num["nbody"][k]], s)])
-            vp = V[num["pnode"][k]] if num["pnode"][k] >= 0 else np.zeros(6)
-            vj = Sk * psi_d[k]
-            V[k] = vp + vj
-            cacc[k] = _crm(V[k], vj)
-            S[k] = Sk
-        Vb = np.array([V[a] if a >= 0 else np.zeros(6) for a in num["attach"]])
+        fb, to_pin, to_centre = num["fb"], num["to_pin"], num["to_centre"]
+        for j, par in enumerate(num["jparent"]):
+            rJ[j] = to_pin[j] if par < 0 else rG[par] + W[fb[par]] @ to_pin[j]
+            rG[j] = rJ[j] + W[fb[j]] @ to_centre[j]
+        s = np.einsum("kij,kj->ki", W[num["before"]], num["naxis"])
+        S = np.concatenate([s, np.cross(rJ[num["nbody"]], s)], axis=1)
+        vj = S * psi_d[:, None]
+        V = np.empty_like(vj)
+        zero = np.zeros(6)
+        for k, par in enumerate(num["pnode"]):
+            V[k] = (V[par] if par >= 0 else zero) + vj[k]
+        cacc = _crm(V, vj)
+        att = num["attach"]
+        Vb = np.where((att >= 0)[:, None], V[att], 0.0)
         loads = np.array(self._loads(t_, *y[:2 * n], *p), dtype=float) if self._loads is not None else np.zeros(0)
         return num, W, rG, rJ, S, V, cacc, Vb, loads
 
     def _inertias(self, num, W, rG):
-        out = []
-        for b in range(len(self.tree.bodies)):
-            m, Wb = num["mass"][b], W[num["fb"][b]]
-            Cx = _skew(rG[b])
-            Iw = Wb @ num["Ib"][b] @ Wb.T
-            out.append(np.block([[Iw + m * Cx @ Cx.T, m * Cx], [m * Cx.T, m * np.eye(3)]]))
+        """Spatial inertias of the bodies about O in the inertial frame, (bodies, 6, 6)."""
+        m = num["mass"]
+        Wb = W[num["fb"]]
+        Iw = Wb @ num["Ib"] @ np.swapaxes(Wb, 1, 2)
+        Cx = _skew_many(rG)
+        mC = m[:, None, None] * Cx
+        out = np.empty((len(m), 6, 6))
+        out[:, :3, :3] = Iw - mC @ Cx
+        out[:, :3, 3:] = mC
+        out[:, 3:, :3] = -mC
+        out[:, 3:, 3:] = m[:, None, None] * np.eye(3)
         return out
 
     def _wrenches(self, num, W, rG, Vb, loads):
@@ -287,8 +313,8 @@ class ArticulatedModel:
                 pw = vec @ w
             else:
                 r = rG[b] + W[num["fb"][b]] @ num["arm"][a]
-                f[b] += np.concatenate([np.cross(r, vec), vec])
-                pw = vec @ (v0 + np.cross(w, r))
+                f[b] += np.concatenate([_cross(r, vec), vec])
+                pw = vec @ (v0 + _cross(w, r))
             if kind != "torsional spring":
                 power += pw
         return f, power
@@ -302,10 +328,11 @@ class ArticulatedModel:
         fext, power = self._wrenches(num, W, rG, Vb, loads)
         IA = np.zeros((nn, 6, 6))
         pA = np.zeros((nn, 6))
+        pb = _crf(Vb, np.einsum("bij,bj->bi", Ibody, Vb)) - fext
         for b, a in enumerate(num["attach"]):
             if a >= 0:
                 IA[a] += Ibody[b]
-                pA[a] += _crf(Vb[b], Ibody[b] @ Vb[b]) - fext[b]
+                pA[a] += pb[b]
         U, D, u = np.empty((nn, 6)), np.empty(nn), np.empty(nn)
         for k in range(nn - 1, -1, -1):
             U[k] = IA[k] @ S[k]
@@ -365,13 +392,24 @@ class ArticulatedModel:
         return T, U
 
 
+def _cross(a, b):
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _skew_many(r):
+    out = np.zeros((len(r), 3, 3))
+    out[:, 0, 1], out[:, 0, 2], out[:, 1, 2] = -r[:, 2], r[:, 1], -r[:, 0]
+    out[:, 1, 0], out[:, 2, 0], out[:, 2, 1] = r[:, 2], -r[:, 1], r[:, 0]
+    return out
+
+
 def _crm(v, m):
-    """Spatial motion cross product v ×ₘ m."""
-    w, v0 = v[:3], v[3:]
-    return np.concatenate([np.cross(w, m[:3]), np.cross(w, m[3:]) + np.cross(v0, m[:3])])
+    """Spatial motion cross products v ×ₘ m, row by row."""
+    w, v0 = v[:, :3], v[:, 3:]
+    return np.concatenate([np.cross(w, m[:, :3]), np.cross(w, m[:, 3:]) + np.cross(v0, m[:, :3])], axis=1)
 
 
 def _crf(v, f):
-    """Spatial force cross product v ×* f."""
-    w, v0 = v[:3], v[3:]
-    return np.concatenate([np.cross(w, f[:3]) + np.cross(v0, f[3:]), np.cross(w, f[3:])])
+    """Spatial force cross products v ×* f, row by row."""
+    w, v0 = v[:, :3], v[:, 3:]
+    return np.concatenate([np.cross(w, f[:, :3]) + np.cross(v0, f[:, 3:]), np.cross(w, f[:, 3:])], axis=1)
