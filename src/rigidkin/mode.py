@@ -114,6 +114,9 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
     setup = ModeSetup(system, kin, states, rows, loads, apps, reactions, kept, red, substitutions, trace)
     setup.held = held
     _trace_kinematics(setup)
+    for ld in loads:                    # a load that states kinematics of its own (3D slip direction)
+        if hasattr(ld, "trace_kinematics"):
+            ld.trace_kinematics(setup)
     system._cache[key] = setup
     return setup
 

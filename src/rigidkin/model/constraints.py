@@ -282,11 +282,22 @@ class Contact(Constraint):
     def loads(self, kin, state):
         if state != "slip" or not isinstance(self.friction, Coulomb):
             return []
-        return [SlidingFriction(self.name, body=self.body, centre=self.centre, radius=self.radius,
-                                normal=self.normal(kin), mu=self.friction.mu, normal_force=self.N,
-                                against_body=self.surface.body,
-                                against_surface=self.surface if self.surface.body is None else None,
-                                normal_unilateral=self.unilateral, sign_symbol=sp.Symbol(f"sigma_{self.name}"))]
+        kind, extra = SlidingFriction, {}
+        if not kin.planar:              # the slip direction anywhere in the tangent plane (model.friction3d)
+            from .friction3d import SlidingFriction3D
+
+            kind, extra = SlidingFriction3D, {"contact": self}
+        return [kind(self.name, body=self.body, centre=self.centre, radius=self.radius,
+                     normal=self.normal(kin), mu=self.friction.mu, normal_force=self.N,
+                     against_body=self.surface.body,
+                     against_surface=self.surface if self.surface.body is None else None,
+                     normal_unilateral=self.unilateral, sign_symbol=sp.Symbol(f"sigma_{self.name}"), **extra)]
+
+    def validity(self, setup, react) -> list:
+        """In 3D: slipping while |v_s| > 0, sticking within the friction cone (model.friction3d)."""
+        from .friction3d import slip_validity
+
+        return slip_validity(self, setup, react)
 
 
 @dataclass(eq=False)

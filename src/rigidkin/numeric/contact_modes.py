@@ -30,6 +30,7 @@ import sympy as sp
 from ..model.constraints import ROLLING, SMOOTH, Coulomb
 from .modes import OPEN, SLIP, STICK, ModeUnavailable, describe_mode
 from .rhs import SimulationError
+from .slip3d import friction_needed, slip_speed
 
 
 class ContactParadox(SimulationError):
@@ -70,8 +71,12 @@ def _options(hyb, name: str, t_, y, p, zero: float) -> list[tuple[str, int]]:
     opened = [(OPEN, 0)] if c.unilateral else []
     if c.friction == ROLLING:
         return [(STICK, 0), *opened]
-    if c.friction == SMOOTH or not isinstance(c.friction, Coulomb) or not hyb.kin.planar:
+    if c.friction == SMOOTH or not isinstance(c.friction, Coulomb):
         return [(SLIP, 0), *opened]
+    if not hyb.kin.planar:          # 3D: slipping in the direction of the slip velocity, or sticking
+        if slip_speed(hyb, name, t_, y, p) > zero:
+            return [(SLIP, 0), *opened]
+        return [(STICK, 0), *opened]
     _, _, s = hyb.contact_state(name, t_, y, p)
     if s is not None and abs(s) > zero:
         return [(SLIP, 1 if s > 0 else -1), *opened]
@@ -117,8 +122,9 @@ def check(hyb, mode: dict, forced: dict, names, t_, y, p, zero: float, force_tol
             _, vn2, _ = hyb.contact_state(name, t_ + h, y2, p)
             if vn2 < -1e-12 * scale:
                 return False, k, mode, f"{name} would move into its surface (its gap's acceleration is negative)"
-        if st == STICK and isinstance(c.friction, Coulomb) and str(c.F) in react:
-            N, F = abs(react.get(str(c.N), 0.0)), react[str(c.F)]
+        F3 = friction_needed(c, react) if st == STICK and not hyb.kin.planar else None
+        if st == STICK and isinstance(c.friction, Coulomb) and (str(c.F) in react or F3 is not None):
+            N, F = abs(react.get(str(c.N), 0.0)), (react[str(c.F)] if F3 is None else F3)
             mu = float(hyb._param_value(c.friction.static, p))
             if abs(F) > mu * N + spare + force_tol * fscale:
                 return False, k, mode, f"sticking at {name} needs |F| = {abs(F):.4g} > µs N = {mu * N:.4g}"

@@ -205,7 +205,9 @@ class Hybrid:
         key = mode_key(mode)
         if key not in self._solutions:
             try:
-                self._solutions[key] = self.system.solve(mode=dict(mode), integrate=False)
+                from .slip3d import expand  # 3D slip: the direction relative to a reference tangent
+
+                self._solutions[key] = expand(self.system.solve(mode=dict(mode), integrate=False))
             except ModelError as exc:   # ConstraintError included
                 self._solutions[key] = ModeUnavailable(
                     f"the mode ({describe_mode(self.system, mode)}) cannot be derived from the model: "
@@ -302,7 +304,7 @@ class Hybrid:
             if sc.symbol not in signs:
                 continue
             sgn = int(signs[sc.symbol])
-            q = setup.scalar(sc.quantity) if sc.rate_based else R(sc.quantity)
+            q = (setup.scalar(sc.quantity) if sc.rate_based else R(sc.quantity)).xreplace(signs)
             kind = "sticks" if (sc.load in self.contacts and sc.rate_based
                                 and isinstance(self.contacts[sc.load].friction, Coulomb)) else "reverses"
             label = f"contact {sc.load} stops slipping" if kind == "sticks" else f"{sc.label} changes sign"

@@ -15,6 +15,7 @@ import numpy as np
 from ..model.constraints import Coulomb
 from .modes import OPEN, SLIP, STICK, ModeModel, ModeUnavailable, _Only, describe_mode, mode_key
 from .rhs import SimulationError
+from .slip3d import friction_needed, slip_speed, start_direction
 
 
 def regime_at(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: float = 1e-9) -> int:
@@ -61,7 +62,7 @@ def settle(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: floa
     scale = max(1.0, float(np.max(np.abs(y[:2 * hyb.layout.n]))))
     for name, c in hyb.contacts.items():
         if mode[name] != OPEN and isinstance(c.friction, Coulomb) and name not in forced:
-            _, _, s = hyb.contact_state(name, t_, y, p)
+            s = hyb.contact_state(name, t_, y, p)[2] if hyb.kin.planar else slip_speed(hyb, name, t_, y, p)
             if s is not None and abs(s) <= zero_tol * scale:
                 mode[name] = STICK
             elif s is not None:
@@ -105,12 +106,16 @@ def settle(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: floa
             if mode[n] != STICK or not isinstance(c.friction, Coulomb):
                 continue
             N, F = react.get(str(c.N), 0.0), react.get(str(c.F), 0.0)
+            if not hyb.kin.planar:
+                F = friction_needed(c, react) or 0.0
             mu = float(hyb._param_value(c.friction.static, p))
             if abs(F) > mu * abs(N) + spare + force_tol * fscale:
                 if not hyb.kin.planar:
-                    raise SimulationError(f"at t = {t_:.10g} contact {n} needs more friction than µN to "
-                                          "stick, and slipping in three dimensions is not simulated yet.",
-                                          where=hyb.system.name)
+                    mode[n] = SLIP
+                    forced.update(start_direction(hyb, mode, n, t_, y, p, react))
+                    notes.append(f"{n} slips: sticking needs |F| = {abs(F):.4g} > µN = {mu * abs(N):.4g}")
+                    changed = True
+                    break
                 mode[n] = SLIP
                 forced[n] = -1 if F > 0 else 1
                 notes.append(f"{n} slips: sticking needs |F| = {abs(F):.4g} > µN = {mu * abs(N):.4g}")

@@ -17,6 +17,7 @@ from .impact import impact, mode_after
 from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable
 from .result import Event
 from .rhs import SimulationError
+from .slip3d import contact_of, nudge, start_direction
 
 
 def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
@@ -80,16 +81,18 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         else:
             detail = f"the slip speed at {w.name} reaches zero but sticking needs more than µN: it slips on"
     elif w.kind == "slips":
-        if w.slip_sign == 0:
-            raise SimulationError(f"contact {w.name} reaches the friction limit, and slipping in three "
-                                  "dimensions is not simulated yet.", where=hyb.system.name)
         cand = {**mode, w.name: SLIP}
-        forced = {**_current_signs(hyb, model), w.name: w.slip_sign}
+        if w.slip_sign == 0:        # 3D: the slip starts against the friction the cone no longer holds
+            forced = {**_current_signs(hyb, model), **start_direction(hyb, cand, w.name, t_, y, p,
+                                                                      model.reactions(t_, y, p))}
+        else:
+            forced = {**_current_signs(hyb, model), w.name: w.slip_sign}
         for h in getattr(model.solution.setup, "held", ()):     # held with it: the group slips together
             cand[h], forced[h] = SLIP, w.slip_sign
         new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
         detail = (f"the friction needed at {w.name} reaches µN; it slips with slip speed "
-                  f"{'positive' if w.slip_sign > 0 else 'negative'}")
+                  f"{'positive' if w.slip_sign > 0 else 'negative'}" if w.slip_sign else
+                  f"the friction needed at {w.name} reaches the friction cone µN; it slips against it")
     elif w.kind == "slack":        # a rope's or cable's tension reaches zero (model.ropes)
         exc = SimulationError(f"the tension of {w.name} reaches zero: it goes slack, and the simulation does not "
                               "follow a slack rope.", where=hyb.system.name,
@@ -105,12 +108,16 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         exc.stop_reason = "arc-end"
         raise exc
     else:  # "reverses"
-        forced = _current_signs(hyb, model, without=(w.name,))
+        turned = contact_of(w.name)     # a 3D slip direction past a diagonal: the other tangent is the reference
+        forced = _current_signs(hyb, model, without=(w.name,) + ((turned,) if turned else ()))
         k = hyb.regime_at(mode, t_, y, p, forced)
         new_mode, nts = mode, []
-        detail = f"{w.label}: the friction direction follows the new sign"
+        detail = (f"the slip direction at {turned} turns past a diagonal of its tangent basis; its friction "
+                  "direction is written relative to the other tangent (the motion does not change)" if turned
+                  else f"{w.label}: the friction direction follows the new sign")
     y = np.array(y, dtype=float)
     y[:2 * n] = hyb.project_rates(new_mode, t_, y[:2 * n], p)
+    y = nudge(hyb, new_mode, t_, y, p)        # a 3D slip that starts here (slip3d)
     after_model = hyb.model(new_mode, k)
     if nts:
         detail = "; ".join([detail, *nts]) if detail else "; ".join(nts)

@@ -1,0 +1,128 @@
+"""Sliding friction in 3D (issue 18, item 3): a billiard ball struck with spin on a rough table, against the
+closed form, and the slip direction in `solve`.
+
+Closed form (sphere of radius r, I = 2/5 m r², on a horizontal plane, Coulomb µ): with v_s the slip velocity of
+the contact point, dv̄/dt = −µ g û and dω/dt = (5 µ g / 2r) Ez × û, so dv_s/dt = −(7/2) µ g û: the slip direction
+û is constant, |v_s| falls linearly and vanishes at t = 2|v_s0|/(7 µ g); the centre moves on the parabola
+r̄ = r̄0 + v̄0 t − µ g û t²/2, and rolls on at v̄0 − (2/7) v_s0.  The spin about the vertical stays constant.
+"""
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import rigidkin as rk
+from rigidkin.numeric import simulate
+
+M, R, G, MU = 0.17, 0.028575, 9.81, 0.2
+START = (0.1, 0.2, 0.3)          # 1-2-3 body-fixed angles, away from their singular β = ±π/2
+
+
+def billiard() -> rk.System:
+    s = rk.System("billiard")
+    m = s.parameter("m", "kg", "mass of the ball", value=M)
+    r = s.parameter("r", "m", "radius of the ball", value=R)
+    g = s.parameter("g", "m/s^2", value=G)
+    mu = s.parameter("mu", "1", "coefficient of friction ball-cloth", value=MU)
+    F = s.inertial
+    a = s.coordinate("alpha", "turn of the ball about Ex", initial=START[0])
+    b = s.coordinate("beta", "turn about the once-turned y axis", initial=START[1])
+    c = s.coordinate("gamma", "turn about the ball's own z axis", initial=START[2])
+    x = s.coordinate("x", "centre along Ex", kind="length")
+    y = s.coordinate("y", "centre along Ey", kind="length")
+    z = s.coordinate("z", "height of the centre", kind="length", initial=R)
+    B = s.frame("B", sequence="123", angles=(a, b, c))
+    C = s.point("C", offset=x * F.x + y * F.y + z * F.z)
+    ball = s.body("ball", rk.shapes.SolidSphere(m, r), frame=B, at=C)
+    s.contact("P", ball, s.plane(s.origin, F.z, name="table"), centre=C, radius=r, friction=mu, normal_name="N")
+    s.gravity(g, -F.z)
+    return s
+
+
+def _omega(angles, rates) -> np.ndarray:
+    """ω of 1-2-3 body-fixed angles: α̇ Ex + β̇ (Rx Ey) + γ̇ (Rx Ry Ez), written independently of the library."""
+    a, b, _ = angles
+
+    def rx(t):
+        return np.array([[1, 0, 0], [0, np.cos(t), -np.sin(t)], [0, np.sin(t), np.cos(t)]])
+
+    def ry(t):
+        return np.array([[np.cos(t), 0, np.sin(t)], [0, 1, 0], [-np.sin(t), 0, np.cos(t)]])
+
+    return rates[0] * np.array([1.0, 0, 0]) + rates[1] * rx(a) @ [0, 1, 0] + rates[2] * rx(a) @ ry(b) @ [0, 0, 1]
+
+
+@pytest.fixture(scope="module")
+def system():
+    return billiard()
+
+
+# (v̄0, Euler rates): side spin (the slip oblique to the cue direction: a curved path), top spin, back spin (draw)
+CASES = {
+    "side spin": ((0.3, 1.0), (-10.0, 8.0, 5.0)),
+    "top spin": ((0.0, 1.2), (-60.0, 0.0, 0.0)),
+    "back spin": ((0.0, 1.2), (50.0, 0.0, 3.0)),
+}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", list(CASES))
+def test_billiard_ball_path_until_rolling(system, case):
+    (vx, vy), rates = CASES[case]
+    v0 = np.array([vx, vy, 0.0])
+    w0 = _omega(START, rates)
+    vs0 = v0 + np.cross(w0, [0.0, 0.0, -R])
+    u = vs0 / np.linalg.norm(vs0)
+    t_roll = 2 * np.linalg.norm(vs0) / (7 * MU * G)
+    initial = {"x": 0.0, "y": 0.0, "dot(x)": vx, "dot(y)": vy,
+               **{f"dot({n})": w for n, w in zip(("alpha", "beta", "gamma"), rates)}}
+    res = simulate(system, 2.5 * t_roll, initial)
+    assert res.reached_end
+    sticks = [e for e in res.events if e.kind == "sticks"]
+    assert [e.name for e in res.events] == ["contact P sticks (rolling begins)"]
+    assert abs(sticks[0].t - t_roll) < 1e-8 * t_roll
+
+    def closed(t):
+        tt = min(t, t_roll)
+        pos, vel = v0 * tt - MU * G * u * tt**2 / 2, v0 - MU * G * u * tt
+        return pos + vel * max(0.0, t - t_roll), vel
+
+    for t in np.linspace(0.0, 2.5 * t_roll, 11):
+        st = res.at(t)
+        pos, vel = closed(t)
+        assert np.allclose([st["x"], st["y"]], pos[:2], rtol=0, atol=1e-8 * np.linalg.norm(v0) * t_roll)
+        assert np.allclose([st["dot(x)"], st["dot(y)"]], vel[:2], rtol=0, atol=1e-8 * np.linalg.norm(v0))
+        angles = [st[n] for n in ("alpha", "beta", "gamma")]
+        w = _omega(angles, [st[f"dot({n})"] for n in ("alpha", "beta", "gamma")])
+        assert abs(w[2] - w0[2]) < 1e-8 * np.linalg.norm(w0)           # the spin about the vertical stays
+        assert abs(st["beta"]) < 1.3                                      # the angles stay regular
+        if t > t_roll:                                                    # rolling: no slip
+            assert np.linalg.norm(vel + np.cross(w, [0.0, 0.0, -R])) < 1e-8 * np.linalg.norm(v0)
+    final = v0 - 2 / 7 * vs0
+    assert np.allclose(res.at(2.5 * t_roll)["dot(x)"], final[0], atol=1e-8)
+    assert np.allclose(res.at(2.5 * t_roll)["dot(y)"], final[1], atol=1e-8)
+    # energy falls only by the friction work, E − E0 = W
+    assert abs(res["E"][-1] - res["E"][0] - res["W"][-1]) < 1e-8 * res["E"][0]
+    assert abs(res["W"][-1] + MU * M * G * np.linalg.norm(vs0) * t_roll / 2) < 1e-8 * res["E"][0]
+
+
+@pytest.mark.slow
+def test_billiard_ball_equations_with_the_slip_direction(system):
+    """`solve` of the slipping mode: friction −µ N û with û the unit vector of the slip velocity (û_P1, û_P2),
+    one regime; N = m g; the trace states v_s and û."""
+    sol = system.solve(mode={"P": "slip"}, integrate=False)
+    assert len(sol.regimes) == 1
+    u1, u2 = sp.symbols("û_P1 û_P2", real=True)
+    m, g, mu = (system.parameters[n] for n in ("m", "g", "mu"))
+    x, y = (system.coordinate_info[n].symbol for n in ("x", "y"))
+    t = rk.t
+    assert sp.simplify(sol.accelerations[x] + mu * g * u1) == 0
+    assert sp.simplify(sol.accelerations[y] + mu * g * u2) == 0
+    assert sp.simplify(sol.reactions["N"] - m * g) == 0
+    steps = [st for st in sol.trace.steps if st.title == "Slip velocity and its direction at P"]
+    assert len(steps) == 1
+    eqs = dict(steps[0].equations)
+    s1, s2 = sp.symbols("s_P1 s_P2", real=True)
+    assert sp.simplify(eqs[u1] - s1 / sp.sqrt(s1**2 + s2**2)) == 0
+    # the slip velocity along t1, t2 (Ex, Ey): ẋ − r ω_y and ẏ + r ω_x
+    assert eqs[s1].has(x.diff(t)) and eqs[s2].has(y.diff(t))
