@@ -199,9 +199,12 @@ def arrow_table(columns: Mapping[str, np.ndarray], metadata: Mapping[str, str] |
             out.append(pa.array(a.astype(np.int64), type=pa.int64()))
         elif kind == "b":
             out.append(pa.array(a, type=pa.bool_()))
-        else:
-            text = [None if v is None else str(v) for v in a.tolist()]
-            out.append(pa.array(text, type=pa.string()).dictionary_encode())
+        else:                                   # text: each distinct value once, and a code per row
+            labels: dict = {}
+            codes = [labels.setdefault(v, len(labels)) for v in a.tolist()]
+            words = [None if v is None else str(v) for v in labels]
+            out.append(pa.DictionaryArray.from_arrays(pa.array(np.asarray(codes, dtype=np.int32)),
+                                                      pa.array(words, type=pa.string())))
     meta = {str(k).encode(): str(v).encode() for k, v in (metadata or {}).items()}
     return pa.Table.from_arrays(out, names=names).replace_schema_metadata(meta or None)
 
@@ -216,5 +219,20 @@ def write_parquet(columns: Mapping[str, np.ndarray], path, what: str = "the tabl
 
     table = arrow_table(columns, metadata)
     with writing(path, what, binary=True) as fh:
-        pq.write_table(table, fh)
+        pq.write_table(table, fh, use_dictionary=_few_values(columns))
     return Path(path)
+
+
+def _few_values(columns: Mapping[str, np.ndarray]) -> list[str]:
+    """The columns worth a Parquet dictionary: text, and numbers with few distinct values (a fixed parameter).
+    Trying a dictionary on every column costs more than writing the whole table."""
+    names = []
+    for name, a in columns.items():
+        a = np.asarray(a).reshape(-1)
+        if a.dtype.kind not in "fiub":
+            names.append(str(name))
+            continue
+        probe = a[:: max(1, a.size // 64)]
+        if np.unique(probe).size * 4 <= probe.size:
+            names.append(str(name))
+    return names
