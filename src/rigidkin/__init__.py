@@ -23,6 +23,7 @@ _LAZY = {
     "Coulomb": ("rigidkin.model.constraints", "Coulomb"),
     "shapes": ("rigidkin.model.shapes", None),
     "model": ("rigidkin.model", None),
+    "jupyter": ("rigidkin.report.jupyter", None),
     "v": ("rigidkin.model.loads", "V"),
     "RigidkinError": ("rigidkin.errors", "RigidkinError"),
     "ModelError": ("rigidkin.errors", "ModelError"),
@@ -32,7 +33,7 @@ _LAZY = {
 }
 
 __all__ = [
-    "System", "Solution", "Regime", "Condition", "Coulomb", "shapes", "model", "t", "v",
+    "System", "Solution", "Regime", "Condition", "Coulomb", "shapes", "model", "jupyter", "t", "v",
     "RigidkinError", "ModelError", "ConstraintError", "RegimeError", "InputError",
 ]
 

@@ -1,31 +1,96 @@
-"""Rich display in Jupyter: HTML (MathML) and LaTeX views of a System, a Solution and a simulation result.
+"""Rich display in Jupyter: HTML and LaTeX views of a System, a Solution and a simulation result.
 
 These are compact views: what the object *is* (a system's parameters, coordinates, bodies,
 constraints and loads; a solution's equations of motion and reactions; a simulation's modes and
 events with its figures).  The whole derivation is ``rigidkin.report.build_document`` /
-``write_report``.
+``write_report``; sliders that re-simulate are :func:`explore` (:mod:`rigidkin.report.widgets`).
+
+Every formula is written twice in the HTML: as TeX (``\\(\\dot{\\theta}\\)``), which JupyterLab,
+Notebook and nbconvert's pages typeset with their MathJax, and as presentation MathML for any other
+page that shows the HTML without MathJax.  A stylesheet shows one of the two: the TeX inside a
+Jupyter output (``.jp-RenderedHTMLCommon``, ``.rendered_html``), the MathML elsewhere.  The rest of
+the fragment is marked for MathJax to leave alone (a ``$`` in a description stays a dollar sign).
 """
 
 from __future__ import annotations
 
+import base64
 import re
 
 from sympy.physics.vector import dynamicsymbols
 
-from .document import Paragraph, Table, answers_blocks, inputs_tables
-from .html import _block, _esc
-from .notation import latex
+from ..textsafe import html_text
+from .document import Animation, Equations, Figure, Math, Paragraph, Step, Table, answers_blocks, inputs_tables
+from .html import _math as _mathml
+from .html import offline_player
+from .notation import latex, latex_condition
 
 t = dynamicsymbols._t
 
+#: MathJax's classes: 2 (classic Notebook) and 3 (JupyterLab, Notebook 7) — skip this, typeset that.
+IGNORE = "tex2jax_ignore mathjax_ignore"
+PROCESS = "tex2jax_process mathjax_process"
+_JUPYTER = (".jp-RenderedHTMLCommon", ".rendered_html")
+
 STYLE = ("<style>.rigidkin table{border-collapse:collapse;margin:.4em 0}.rigidkin th,.rigidkin td{border:1px "
          "solid #ccc;padding:.2em .5em;text-align:left;vertical-align:top}.rigidkin caption{text-align:left;"
-         "font-weight:bold}.rigidkin .step{margin:.4em 0}.rigidkin .why{font-style:italic;color:#444}</style>")
+         "font-weight:bold}.rigidkin .step{margin:.4em 0}.rigidkin .why{font-style:italic;color:#444}"
+         ".rigidkin .eqs{overflow-x:auto}.rigidkin .rk-tex{display:none}"
+         + "".join(f"{j} .rigidkin .rk-tex{{display:inline}}{j} .rigidkin div.rk-tex{{display:block}}"
+                   f"{j} .rigidkin .rk-mathml{{display:none}}" for j in _JUPYTER)
+         + "</style>")
+
+
+def _esc(s: str) -> str:
+    return html_text(s)
+
+
+def tex(m: Math) -> str:
+    """The TeX of a formula (no delimiters): rates with dots, ``\\dot{\\theta}``, ``\\ddot{\\theta}``."""
+    return latex_condition(m.obj, m.relation) if m.relation is not None else latex(m.obj)
+
+
+def _math(m: Math, display: bool) -> str:
+    """A formula as TeX for MathJax and as MathML for pages without it; one of them is shown."""
+    source = _esc(tex(m))
+    if display:
+        return (f'<div class="rk-tex {PROCESS}">\\[{source}\\]</div>'
+                f'<div class="rk-mathml">{_mathml(m, True)}</div>')
+    return f'<span class="rk-tex {PROCESS}">\\({source}\\)</span><span class="rk-mathml">{_mathml(m, False)}</span>'
+
+
+def _cell(c) -> str:
+    return _math(c, False) if isinstance(c, Math) else _esc(c)
+
+
+def block_html(b) -> str:
+    """One block of a document as an HTML fragment for a notebook."""
+    if isinstance(b, Paragraph):
+        return f"<p>{_esc(b.text)}</p>"
+    if isinstance(b, Equations):
+        return '<div class="eqs">' + "".join(_math(m, True) for m in b.items) + "</div>"
+    if isinstance(b, Step):
+        law = f' <small>{_esc(b.law)}</small>' if b.law else ""
+        eqs = '<div class="eqs">' + "".join(_math(m, True) for m in b.equations) + "</div>" if b.equations else ""
+        why = f'<p class="why">{_esc(b.why)}</p>' if b.why else ""
+        return f'<div class="step"><h4>{_esc(b.title)}{law}</h4>{eqs}{why}</div>'
+    if isinstance(b, Table):
+        head = "".join(f"<th>{_esc(c)}</th>" for c in b.columns)
+        rows = "".join("<tr>" + "".join(f"<td>{_cell(c)}</td>" for c in r) + "</tr>" for r in b.rows)
+        cap = f"<caption>{_esc(b.caption)}</caption>" if b.caption else ""
+        return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>"
+    if isinstance(b, Figure):
+        data = base64.b64encode(b.png).decode("ascii")
+        return (f'<figure><img src="data:image/png;base64,{data}" alt="{_esc(b.alt)}">'
+                f"<figcaption>{_esc(b.caption)}</figcaption></figure>")
+    if isinstance(b, Animation):
+        return f"<figure>{offline_player(b.html)}<figcaption>{_esc(b.caption)}</figcaption></figure>"
+    raise TypeError(f"unknown block {b!r}")
 
 
 def fragment(title: str, blocks) -> str:
-    body = "\n".join(_block(b) for b in blocks)
-    return f'{STYLE}<div class="rigidkin"><h3>{_esc(title)}</h3>{body}</div>'
+    body = "\n".join(block_html(b) for b in blocks)
+    return f'{STYLE}<div class="rigidkin {IGNORE}"><h3>{_esc(title)}</h3>{body}</div>'
 
 
 def model_tables(system) -> list:
@@ -78,3 +143,9 @@ def result_html(result, figures: bool = True) -> str:
 
     return fragment(f"{result.title}: simulation", simulation_blocks(result, None, figures=figures, animation=False))
 
+
+def explore(obj, **kwargs):
+    """Sliders for the parameters that re-simulate and redraw (see :func:`rigidkin.report.widgets.explore`)."""
+    from .widgets import explore as _explore
+
+    return _explore(obj, **kwargs)
