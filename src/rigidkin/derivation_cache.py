@@ -201,9 +201,9 @@ def _mac(secret_key: bytes, key: str, payload: bytes) -> bytes:
     return hmac.new(secret_key, key.encode() + b"\0" + payload, hashlib.sha256).hexdigest().encode()
 
 
-def read(where: Path, key: str) -> dict | None:
-    """The entry of ``key`` if it is certainly ours (see the module docstring), else None (it is removed)."""
-    path = where / f"{key}.pkl"
+def _read_signed(path: Path, key: str) -> bytes | None:
+    """The payload of the file ``path`` if it is certainly ours (see the module docstring), else None (and a
+    file that is there but not ours to trust is removed)."""
     if not path.exists() and not path.is_symlink():
         return None
     ok = _ours_and_private(path, 0o022)
@@ -216,19 +216,38 @@ def read(where: Path, key: str) -> dict | None:
             ok = False
     head = len(MAGIC) + 64 + 1
     ok = ok and data.startswith(MAGIC) and len(data) > head and data[head - 1:head] == b"\n"
-    if ok:
-        mac, payload = data[len(MAGIC):head - 1], data[head:]
-        ok = hmac.compare_digest(mac, _mac(secret(where), key, payload))
-    if ok:
-        import pickle
-
-        try:
-            entry = pickle.loads(payload)          # authenticated: written by this user's rigidkin
-        except Exception:
-            entry = None
-        if isinstance(entry, dict) and "system" in entry:
-            return entry
+    if ok and hmac.compare_digest(data[len(MAGIC):head - 1], _mac(secret(path.parent), key, data[head:])):
+        return data[head:]
     _remove(path)
+    return None
+
+
+def _write_signed(path: Path, key: str, payload: bytes) -> bool:
+    """Write ``payload`` with its MAC atomically (mode 0600); False when it cannot be written."""
+    if len(payload) > MAX_ENTRY:
+        return False
+    try:
+        _write_private(path, MAGIC + _mac(secret(path.parent), key, payload) + b"\n" + payload)
+    except OSError:
+        return False
+    _prune(path.parent)
+    return True
+
+
+def read(where: Path, key: str) -> dict | None:
+    """The derivation entry of ``key`` if it is certainly ours, else None."""
+    payload = _read_signed(where / f"{key}.pkl", key)
+    if payload is None:
+        return None
+    import pickle
+
+    try:
+        entry = pickle.loads(payload)          # authenticated: written by this user's rigidkin
+    except Exception:
+        entry = None
+    if isinstance(entry, dict) and "system" in entry:
+        return entry
+    _remove(where / f"{key}.pkl")
     return None
 
 
@@ -285,19 +304,56 @@ def dumps(entry: dict) -> bytes | None:
 def write(where: Path, key: str, entry: dict) -> bool:
     """Store the entry atomically (mode 0600); False when it cannot be pickled or is too large."""
     payload = dumps(entry)
-    if payload is None or len(payload) > MAX_ENTRY:
-        return False
+    return payload is not None and _write_signed(where / f"{key}.pkl", key, payload)
+
+
+def _output_name(key: str, options) -> str:
+    return key + "-" + hashlib.sha256(repr(tuple(options)).encode()).hexdigest()[:24]
+
+
+def read_output(problem: str, options, use: bool = True) -> dict | None:
+    """What a command printed for ``problem`` with these output ``options`` (a tuple of what changes the
+    output), when it was kept: {"text": ..., "status": ...}; None otherwise.  Reads no derivation (and
+    imports no sympy): a repeated ``rigidkin solve`` prints at once."""
+    if not use or disabled_by_env():
+        return None
+    key = key_of(problem)
+    where = folder() if key else None
+    if where is None:
+        return None
+    name = _output_name(key, options)
+    payload = _read_signed(where / f"{name}.out", name)
+    if payload is None:
+        return None
+    import json
+
     try:
-        _write_private(where / f"{key}.pkl", MAGIC + _mac(secret(where), key, payload) + b"\n" + payload)
-    except OSError:
+        out = json.loads(payload.decode())
+    except ValueError:
+        return None
+    if isinstance(out, dict) and isinstance(out.get("text"), str) and isinstance(out.get("status"), int):
+        return out
+    return None
+
+
+def write_output(problem: str, options, text: str, status: int, use: bool = True) -> bool:
+    """Keep what a command printed (see :func:`read_output`)."""
+    if not use or disabled_by_env():
         return False
-    _prune(where)
-    return True
+    key = key_of(problem)
+    where = folder() if key else None
+    if where is None:
+        return False
+    import json
+
+    name = _output_name(key, options)
+    return _write_signed(where / f"{name}.out", name, json.dumps({"text": text, "status": status}).encode())
 
 
 def _prune(where: Path) -> None:
     try:
-        entries = [e for e in os.scandir(where) if e.name.endswith(".pkl") and e.is_file(follow_symlinks=False)]
+        entries = [e for e in os.scandir(where) if e.name.endswith((".pkl", ".out"))
+                   and e.is_file(follow_symlinks=False)]
         if len(entries) > MAX_ENTRIES:
             entries.sort(key=lambda e: e.stat(follow_symlinks=False).st_mtime)
             for e in entries[:len(entries) - MAX_ENTRIES]:

@@ -18,7 +18,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import sympy as sp
-from scipy.optimize import brentq
 from sympy.physics.vector import dynamicsymbols
 
 from .. import algebra
@@ -31,6 +30,13 @@ t = dynamicsymbols._t
 
 #: Value used for a symbolic start value that has no number (to choose among candidate roots).
 DEFAULT_PROBE = 0.3
+
+
+def brentq(*args, **kwargs):
+    """scipy's bracketed root finder, imported when first needed (scipy is slow to import)."""
+    from scipy.optimize import brentq as root
+
+    return root(*args, **kwargs)
 
 
 @dataclass(frozen=True)

@@ -96,7 +96,7 @@ class TimeLimit(RigidkinError):
 
 def time_limit(seconds: float | None, what: str):
     """Stop ``what`` with a clear error after ``seconds`` (main thread, POSIX; otherwise no limit)."""
-    from ..algebra import time_limit as limit
+    from ..timelimit import time_limit as limit
 
     def error():
         return TimeLimit(f"{what} took longer than {seconds:g} s and was stopped.",

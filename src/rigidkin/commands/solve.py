@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import warnings
 
 from .options import EXIT_UNANSWERED, parse_modes
 
@@ -114,7 +115,31 @@ def latex_text(sol, spec, answers) -> str:
 
 
 def run(args) -> int:
-    """Exit status 0, or 1 (EXIT_UNANSWERED) when a question of the file could not be answered."""
+    """Exit status 0, or 1 (EXIT_UNANSWERED) when a question of the file could not be answered.
+
+    A solve printed before for the same file and options is printed again from the cache at once."""
+    from ..derivation_cache import read_output, write_output
+
+    use = not args.no_cache
+    options = ("solve", args.method, args.format, bool(args.no_answers), tuple(args.mode))
+    kept = read_output(args.problem, options, use)
+    if kept is not None:
+        print(kept["text"])
+        return kept["status"]
+    shown = []
+    show = warnings.showwarning
+    warnings.showwarning = lambda *a, **kw: (shown.append(a[0]), show(*a, **kw))
+    try:
+        text, status = _solve(args)
+    finally:
+        warnings.showwarning = show
+    print(text)
+    if status == 0 and not shown:       # a warning, or a question left unanswered, is said again next time
+        write_output(args.problem, options, text, status, use)
+    return status
+
+
+def _solve(args) -> tuple[str, int]:
     from ..errors import RigidkinError
     from ..io.results import solution_data
     from ..report.text import problem_text
@@ -141,7 +166,6 @@ def run(args) -> int:
                 text = terminal_safe(guarded(args, problem_text, sol, spec, answers, notes))
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
-    print(text)
-    derived.save()              # after the output: what printing computed (the power check) is kept too
+    derived.save()              # after the text: what writing it computed (the power check) is kept too
     unanswered = [name for name, a in answers.items() if isinstance(a, str)]
-    return EXIT_UNANSWERED if unanswered else 0
+    return text, EXIT_UNANSWERED if unanswered else 0
