@@ -139,3 +139,18 @@ def test_collar_force_card_prints_sin_squared():
     assert "1 + 3·sin(θ)²" in acc and "cos(θ)²" not in acc
     n = text(sol.reactions["N"])
     assert "1 + 3·sin(θ)²" in n and not n.startswith("-")
+
+
+def test_heavy_top_equation_of_motion_coefficient():
+    """Equation (1) of the heavy top: the ψ̈ coefficient I₁ + I₃ cos²θ − I₁ cos²θ in a shorter form."""
+    from rigidkin import examples
+
+    s = examples.build("heavy-top")
+    sol = s.solve()
+    psi, th = (next(q for q in s.coordinates if q.func.__name__ == n) for n in ("psi", "theta"))
+    acc = psi.diff(th.args[0], 2)
+    rows = [sp.collect(e, [acc], evaluate=False) for e in sol.eom]
+    coeff = next(r[acc] for r in rows if acc in r)
+    I1, I3 = (s.parameter_info[n].symbol for n in ("I1", "I3"))
+    assert sp.count_ops(coeff) < sp.count_ops(I1 + I3 * sp.cos(th) ** 2 - I1 * sp.cos(th) ** 2)
+    assert_equal_everywhere(coeff.xreplace({th: x}), I1 * S**2 + I3 * C**2)

@@ -43,6 +43,7 @@ from .mode import ModeSetup
 from .printing import latex, text
 from .regime import Condition, Deferred, LazyMap, Regime  # noqa: F401 (Condition, LazyMap: re-exported)
 from .trace import LazyEquations, Trace
+from .trigforms import compact
 
 t = dynamicsymbols._t
 
@@ -399,7 +400,7 @@ def _readable_eom(setup, M, f):
         e = sum((M[i, j] * accels[j] for j in range(len(accels))), sp.Integer(0)) - f[i]
         e = algebra.strip_factors(e) if small else e
         if len(accels) <= 4 and sp.count_ops(e) < 200:
-            e = sp.collect(sp.expand(e), accels, func=sp.factor_terms)
+            e = sp.collect(sp.expand(e), accels, func=lambda c: compact(sp.factor_terms(c)))  # shortest trig form
         e = algebra.leading_sign(e, accels, ref) * e
         eom.append(e)
     return M, f, eom
