@@ -32,7 +32,6 @@ from .rhs import compile_functions
 from .state import StateLayout
 from .tree import NotATree, Tree, node_coefficients, read_tree
 
-
 t = dynamicsymbols._t
 
 
