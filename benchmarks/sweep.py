@@ -1,20 +1,37 @@
-"""Batch sweeps: 10⁴ ladder runs to wall-contact loss, and a chain of 5 rods, against solve_ivp loops.
+"""Batch sweeps: 10⁵ ladders to wall-contact loss as one whole ``rigidkin sweep`` command, the sweep
+engine alone on 10⁴ ladders and a chain of 5 rods, each against a solve_ivp loop measured in the same run.
 
-    python benchmarks/sweep.py [--runs 10000] [--baseline-runs 100] [--dask]
+    python benchmarks/sweep.py [--command-runs 100000] [--baseline-runs 1000] [--runs 10000] [--dask]
+    python benchmarks/sweep.py --command-only          # the whole command against the loop, nothing else
+
+The whole command is timed as a user meets it: a fresh process (``rigidkin sweep ladder --param
+theta=0.05:1.3:N --stop-at N_A -o runs.csv``, and ``-o runs.parquet`` when pyarrow is installed)
+that starts Python, parses its options, derives (or reads the derivation cache), compiles the model
+(or loads the cached library), integrates every run and writes the table.  Its CPU seconds are the
+child's (``getrusage(RUSAGE_CHILDREN)``: every thread and the compiler), its wall seconds the time
+the process took; the first run uses an empty cache folder (``$RIGIDKIN_CACHE``), the repeats the
+one it filled.  A breakdown of one cached run into its steps is printed beside it.
 
 The baseline is a Python loop over ``scipy.integrate.solve_ivp`` (DOP853, rtol 1e-10, atol 1e-12)
-with a plainly lambdified RHS and event, on the same model: its median time per run (over
-``--baseline-runs`` runs spread over the same grid) times the number of runs.  Every figure is
-given twice: CPU seconds of this process (all threads; what the work costs) and wall seconds (what
-a person waits: on a shared machine it also counts the time other processes hold the cores).
-Speed-ups are CPU ratios; the wall ratio is shown beside them.
+with a plainly lambdified RHS and event, on the same model and grid: ``--baseline-runs`` runs
+spread evenly over the grid, timed one by one, their mean times the number of runs (an
+extrapolation; the loop's own start, derivation and lambdify are not counted, which favours it).
+Every figure is given as CPU seconds (what the work costs) and wall seconds (what a person waits:
+on a shared machine it also counts the time other processes hold the cores).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
+import resource
 import statistics
+import subprocess
+import sys
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 import sympy as sp
@@ -136,16 +153,171 @@ def chain_rows(runs: int, base_runs: int):
              None]], [f"chain 5: max difference of the final states from the solve_ivp runs = {err:.2e}"]
 
 
+# ---------------------------------------------------------------------------------------------------
+# the whole command
+def rigidkin_command() -> list[str]:
+    """How a user starts rigidkin: the console script beside this interpreter, else ``python -m rigidkin``."""
+    script = Path(sys.executable).parent / "rigidkin"
+    return [str(script)] if script.exists() else [sys.executable, "-m", "rigidkin"]
+
+
+def timed_command(argv: list[str], env: dict) -> tuple[float, float, str]:
+    """(CPU s of the child and its children, wall s, stdout) of one command; raises on a non-zero exit."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    w0 = time.perf_counter()
+    done = subprocess.run(argv, env=env, capture_output=True, text=True, timeout=1800)
+    wall = time.perf_counter() - w0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(argv)} exited {done.returncode}: {done.stderr.strip()}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return cpu, wall, done.stdout
+
+
+#: The steps of one sweep command, timed in a fresh process by the same calls ``commands/sweep.py`` makes.
+_STEPS = r"""
+import json, sys, time
+marks = [("start", time.process_time(), time.perf_counter())]
+def mark(name): marks.append((name, time.process_time(), time.perf_counter()))
+from rigidkin.cli import build_parser
+args = build_parser().parse_args(sys.argv[1:])
+from rigidkin.commands import sweep as cmd
+vary = {n: cmd.parse_axis(v, n) for n, v in cmd._pairs(args.param, "--param").items()}
+mark("imports and options")
+from rigidkin.commands import common
+opener = getattr(common, "open_problem", None)
+problem = opener(args) if opener else None
+system = problem.system if problem else common.load_system(args.problem)[0]
+mark("problem read" + (" (derivation cache hit)" if getattr(problem, "hit", False) else ""))
+system.solve()
+from rigidkin.numeric.codegen import compile_kernel, kernel
+model = compile_kernel(kernel(system))
+mark("derivation, kernel and compiled library")
+from rigidkin.numeric.sweep import sweep
+res = sweep(system, vary, stop_at=args.stop_at or None, workers=args.threads)
+mark("sweep (integration)")
+res.write(args.output)
+mark("table written")
+if problem is not None and hasattr(problem, "save"):
+    problem.save()
+print(json.dumps([(n, c1 - c0, w1 - w0) for (_, c0, w0), (n, c1, w1) in zip(marks, marks[1:])]))
+"""
+
+
+def command_steps(argv: list[str], env: dict) -> list[tuple[str, float, float]]:
+    """(step, CPU s, wall s) of one sweep command in a fresh process (the same calls as the command)."""
+    done = subprocess.run([sys.executable, "-c", _STEPS, *argv], env=env, capture_output=True, text=True,
+                          timeout=1800)
+    if done.returncode != 0:
+        raise RuntimeError(done.stderr.strip()[-2000:])
+    return [tuple(r) for r in json.loads(done.stdout.strip().splitlines()[-1])]
+
+
+def read_table(path: Path) -> dict[str, np.ndarray]:
+    """The initial angle and the event's time and angle of every run, from the table the command wrote."""
+    names = ("theta", "N_A: t", "N_A: theta")
+    if path.suffix == ".parquet":
+        import pyarrow.parquet as pq
+
+        t = pq.read_table(path, columns=list(names))
+        return {c: t.column(c).to_numpy(zero_copy_only=False) for c in names}
+    import csv
+
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        cols = [header.index(c) for c in names]
+        rows = [[float(r[i]) if r[i] else np.nan for i in cols] for r in reader]
+    data = np.array(rows)
+    return {c: data[:, k] for k, c in enumerate(names)}
+
+
+def command_rows(runs: int, base_runs: int, repeats: int):
+    """The whole ``rigidkin sweep`` of ``runs`` ladders (CSV, Parquet) against the solve_ivp loop, interleaved:
+    each repeat runs the commands and then a slice of the loop's sample, so that both meet the same load."""
+    from rigidkin import examples
+    from rigidkin.numeric.sweep import plan
+
+    try:
+        import pyarrow.parquet  # noqa: F401
+        formats = ["csv", "parquet"]
+    except ImportError:
+        formats = ["csv"]
+    s = examples.build("ladder")
+    _, _, Y0 = plan(s, {"theta": (0.05, 1.3, runs)})
+    rhs, event, _ = lambdified(s, "N_A")
+    sample = np.linspace(0, runs - 1, base_runs).astype(int)
+    rows, notes, times = [], [], {fmt: [] for fmt in formats}
+    loop_cpu = loop_wall = 0.0
+    solved = {}
+    with tempfile.TemporaryDirectory(prefix="rk-sweep-bench-") as tmp:
+        cache = Path(tmp) / "cache"
+        cache.mkdir(mode=0o700)
+        env = dict(os.environ, RIGIDKIN_CACHE=str(cache))
+        base = [*rigidkin_command(), "sweep", "ladder", "--param", f"theta=0.05:1.3:{runs}", "--stop-at", "N_A"]
+        first = timed_command([*base, "-o", str(Path(tmp) / "first.csv")], env)
+        for part in np.array_split(sample, repeats):
+            for fmt in formats:
+                times[fmt].append(timed_command([*base, "-o", str(Path(tmp) / f"runs.{fmt}")], env))
+            cpu0, wall0 = time.process_time(), time.perf_counter()
+            for i in part.tolist():
+                solved[i] = solve_ivp(rhs, (0, 10.0), Y0[i], method="DOP853", rtol=1e-10, atol=1e-12, events=[event])
+            loop_cpu += time.process_time() - cpu0
+            loop_wall += time.perf_counter() - wall0
+        for fmt in formats:
+            t = read_table(Path(tmp) / f"runs.{fmt}")
+            th0, th = t["theta"], t["N_A: theta"]
+            err = float(np.max(np.abs(th - np.arccos(2 / 3 * np.cos(th0)))))
+            ivp = max(abs(t["N_A: t"][i] - sol.t_events[0][0]) for i, sol in solved.items())
+            notes.append(f"{fmt}: {len(th0)} rows; max |θ_event − acos(2/3 cos θ0)| = {err:.1e} rad; "
+                         f"event times within {ivp:.1e} s of the solve_ivp sample")
+        steps = command_steps(["sweep", "ladder", "--param", f"theta=0.05:1.3:{runs}", "--stop-at", "N_A",
+                               "-o", str(Path(tmp) / "steps.csv")], env)
+    loop_cpu, loop_wall = loop_cpu / base_runs * runs, loop_wall / base_runs * runs
+    th_ivp = np.array([sol.y_events[0][0][0] for sol in solved.values()])
+    th_cf = np.arccos(2 / 3 * np.cos(Y0[list(solved), 0]))
+    notes.append(f"solve_ivp sample: max |θ_event − closed form| = {float(np.max(np.abs(th_ivp - th_cf))):.1e} rad")
+    results = {"first": first[:2], **{fmt: (statistics.median(t[0] for t in ts), statistics.median(t[1] for t in ts))
+                                       for fmt, ts in times.items()}}
+    labels = {"first": "whole command, first run (empty cache: derive, compile), CSV",
+              "csv": f"whole command, cached, CSV (median of {repeats})",
+              "parquet": f"whole command, cached, Parquet (median of {repeats})"}
+    for key, (cpu, wall) in results.items():
+        rows.append([labels[key], runs, cpu, wall, loop_cpu / cpu, loop_wall / wall,
+                     "yes" if loop_cpu / cpu >= 100 else "no"])
+    rows.append([f"solve_ivp loop (lambdify): {base_runs} runs timed, × {runs:,}/{base_runs}", runs, loop_cpu,
+                 loop_wall, 1.0, 1.0, None])
+    step_rows = [[name, cpu, wall] for name, cpu, wall in steps]
+    step_rows.append(["sum of the steps (the command also starts and ends the interpreter)",
+                      sum(r[1] for r in step_rows), sum(r[2] for r in step_rows)])
+    notes.insert(0, f"command: rigidkin sweep ladder --param theta=0.05:1.3:{runs} --stop-at N_A -o runs.csv "
+                    "(and -o runs.parquet)")
+    return rows, notes, step_rows
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--command-runs", type=int, default=100_000, help="ladders in the whole command")
+    ap.add_argument("--repeats", type=int, default=5, help="repeats of the cached whole command")
+    ap.add_argument("--command-only", action="store_true", help="only the whole command against the loop")
     ap.add_argument("--runs", type=int, default=10_000)
     ap.add_argument("--chain-runs", type=int, default=1000)
-    ap.add_argument("--baseline-runs", type=int, default=100)
+    ap.add_argument("--baseline-runs", type=int, default=1000, help="solve_ivp runs sampled for the whole command")
+    ap.add_argument("--engine-baseline-runs", type=int, default=100, help="solve_ivp runs sampled for the engine")
     ap.add_argument("--dask", action="store_true", help="also time a Dask LocalCluster sweep")
     a = ap.parse_args(argv)
     print(f"# Batch sweeps ({machine()})", flush=True)
-    rows, notes = ladder_rows(a.runs, a.baseline_runs, a.dask)
-    r2, n2 = chain_rows(a.chain_runs, max(10, a.baseline_runs // 5))
+    rows, notes, steps = command_rows(a.command_runs, a.baseline_runs, a.repeats)
+    print(table(f"Whole command: {a.command_runs:,} ladders to wall-contact loss (CPU and wall seconds)",
+                ["what", "runs", "CPU s", "wall s", "speed-up CPU", "speed-up wall", "≥ 100× CPU"], rows,
+                "\n".join(notes + ["speed-up = solve_ivp loop (same model, same grid, measured in this run) / "
+                                    "command; target ≥ 100×."])), flush=True)
+    print(table("One cached command, step by step (a fresh process making the command's calls)",
+                ["step", "CPU s", "wall s"], steps), flush=True)
+    if a.command_only:
+        return
+    rows, notes = ladder_rows(a.runs, a.engine_baseline_runs, a.dask)
+    r2, n2 = chain_rows(a.chain_runs, max(10, a.engine_baseline_runs // 5))
     print(table("Sweeps (CPU and wall seconds; compiled sweeps: median of 3)",
                 ["what", "runs", "CPU s", "wall s", "speed-up CPU", "speed-up wall", "wall < 2 s"], rows + r2,
                 "\n".join(notes + n2 + ["speed-up = baseline (solve_ivp loop, same process, same model) / sweep; "
