@@ -135,3 +135,39 @@ def test_a_refused_value_is_said_and_the_figures_stay(ladder):
     with pytest.raises(RigidkinError) as refused:
         simulate(ladder, T_END, None, {"l": -0.5})
     assert html.escape(str(refused.value)) in view.status.value and "color:#a00" in view.status.value
+
+
+def test_stylesheet_shows_tex_in_jupyter_and_mathml_elsewhere(ladder, tmp_path):
+    """In headless Chromium: inside a JupyterLab output (.jp-RenderedHTMLCommon) the TeX is shown for
+    MathJax and the MathML hidden; on a plain page the other way round."""
+    import shutil
+    import tempfile
+    from pathlib import Path
+
+    sync_api = pytest.importorskip("playwright.sync_api", reason="Playwright is not installed")
+    chromium = next((p for p in ("/usr/bin/chromium", shutil.which("chromium") or "") if p and Path(p).exists()),
+                    None)
+    if chromium is None:
+        pytest.skip("Chromium is not installed (apt-get install chromium)")
+    fragment = _bundle(ladder.solve())["text/html"]
+    page_file = tmp_path / "outputs.html"
+    page_file.write_text(f'<!DOCTYPE html><html><head><meta charset="utf-8"></head><body>'
+                         f'<div id="lab" class="jp-RenderedHTMLCommon jp-RenderedHTML">{fragment}</div>'
+                         f'<div id="plain">{fragment}</div></body></html>', encoding="utf-8")
+    count = """([root, cls]) => [...document.querySelectorAll(`#${root} .${cls}`)]
+                 .map(e => getComputedStyle(e).display !== 'none')"""
+    with sync_api.sync_playwright() as p, tempfile.TemporaryDirectory() as profile:
+        ctx = p.chromium.launch_persistent_context(profile, executable_path=chromium, headless=True,
+                                                   args=["--headless", "--no-sandbox", "--disable-gpu"])
+        try:
+            page = ctx.new_page()
+            page.route("**/*", lambda route: route.continue_() if route.request.url.startswith("file:")
+                       else route.abort())
+            page.goto(page_file.as_uri())
+            shown = {(root, cls): page.evaluate(count, [root, cls])
+                     for root in ("lab", "plain") for cls in ("rk-tex", "rk-mathml")}
+        finally:
+            ctx.close()
+    assert len(shown["lab", "rk-tex"]) > 5 and len(shown["lab", "rk-tex"]) == len(shown["lab", "rk-mathml"])
+    assert all(shown["lab", "rk-tex"]) and not any(shown["lab", "rk-mathml"])
+    assert not any(shown["plain", "rk-tex"]) and all(shown["plain", "rk-mathml"])

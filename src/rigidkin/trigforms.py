@@ -24,7 +24,7 @@ from math import comb
 import sympy as sp
 
 #: Expressions with more operations, or more distinct angles, than these are left as they are.
-COMPACT_LIMIT = 600
+COMPACT_LIMIT = 400
 ANGLES_LIMIT = 3
 #: Sums with more terms than this are left as they are.
 TERMS_LIMIT = 40
