@@ -64,8 +64,12 @@ def _terms(vec, frame_index):
 class ArticulatedModel:
     """dy/dt, energy and pin reactions of ``system`` by the articulated-body algorithm (NotATree otherwise)."""
 
-    def __init__(self, system, tree: Tree | None = None, layout: StateLayout | None = None):
+    #: evaluate the step in C where the tree's only load is gravity and a compiler is available
+    use_c = True
+
+    def __init__(self, system, tree: Tree | None = None, layout: StateLayout | None = None, use_c: bool = True):
         self.system = system
+        self.use_c = use_c
         self.tree = tr = tree or read_tree(system)
         self.layout = lay = layout or StateLayout.of(system)
         if tuple(lay.coordinates) != tr.coordinates:
@@ -175,7 +179,7 @@ class ArticulatedModel:
         num["nval"] = get(g, "ncoef")
         if abs(np.linalg.det(C)) < 1e-12 * max(1.0, float(np.max(np.abs(C)))) ** n:
             raise NotATree("the joint angles do not determine the coordinates")
-        num["solve"] = self._substitution(C)
+        num["solve"], num["plan"] = self._substitution(C)
         # geometry in the body frames, checked constant at two states
         Ws = [self._orientations(num, s[1:1 + n]) for s in states]
 
@@ -222,6 +226,11 @@ class ArticulatedModel:
         num["before"] = np.array([tr.nodes[k].before for k in range(len(tr.nodes))], dtype=int)
         num["naxis"] = np.array([[float(c) for c in tr.nodes[k].axis] for k in range(len(tr.nodes))])
         num["first"] = {jt.nodes[0]: j for j, jt in enumerate(tr.joints) if jt.nodes}
+        num["c"] = None
+        if self.use_c and not tr.applications:      # gravity only: the whole step in C (numeric/aba_c.py)
+            from .aba_c import compiled
+
+            num["c"] = compiled(num, n)
         return num
 
     @staticmethod
@@ -234,7 +243,7 @@ class ArticulatedModel:
             new = [i for i in cols if i not in seen]
             if len(new) != 1:
                 lu = sla.lu_factor(C)
-                return lambda psi_dd: sla.lu_solve(lu, psi_dd)
+                return (lambda psi_dd, lu=lu: sla.lu_solve(lu, psi_dd)), None
             i = new[0]
             seen.add(i)
             plan.append((k, i, C[k, i], [(j, C[k, j]) for j in cols if j != i]))
@@ -244,7 +253,7 @@ class ArticulatedModel:
             for k, i, cii, rest in plan:
                 out[i] = (psi_dd[k] - sum(c * out[j] for j, c in rest)) / cii
             return out
-        return solve
+        return solve, plan
 
     def _orientations(self, num, q):
         """World orientation of every elementary frame (index −1, the last row: the inertial frame)."""
@@ -359,6 +368,10 @@ class ArticulatedModel:
 
     def rates(self, t_, y, p) -> np.ndarray:
         """dy/dt of (q, q̇) and of the work of the non-conservative loads (the simulation's state)."""
+        n = self.n
+        fast = self.numbers(p)["c"]
+        if fast is not None:                  # gravity only: no load does work
+            return np.concatenate([y[n:2 * n], fast.qdd(y[:n], y[n:2 * n]), [0.0]])
         qdd, _, power, _ = self.dynamics(t_, y, p)
         return np.concatenate([y[self.n:2 * self.n], qdd, [power]])
 

@@ -225,7 +225,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     max_step = (t1 - t0) / 100 if max_step is None else float(max_step)   # no event hides inside one step
     if method not in METHODS:
         raise InputError(f"unknown integration method '{method}'.", where="simulate", hint=f"Use {', '.join(METHODS)}.")
-    from .large import numeric_route, simulate_tree      # past the symbolic limit: a tree of pins goes numeric
+    from .large import numeric_route, simulate_tree  # past the symbolic limit: a tree of pins goes numeric
     from .tree import NotATree
 
     tree = numeric_route(system) if not phases and not mode else None
