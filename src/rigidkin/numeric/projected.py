@@ -324,6 +324,8 @@ class ProjectedModel:
 
     def _rates(self, kind, t_, q, ui, p):
         n = len(self.speeds)
+        if not self._n_rows:                  # no constraint relates the speeds: u = u_i
+            return list(ui) if kind == "mpmath" else np.asarray(ui, dtype=float)
         A, b, _, _ = self._raw_q(kind, t_, q, p)
         return _full_rates(kind, A, b, ui, self.independent_index, self.dependent_index, n)
 
@@ -382,7 +384,19 @@ class ProjectedModel:
         n = len(self.coordinates)
         slots = [list(s) for s in self.quaternion_slots()] if stabilise else []
 
+        fused = self._fused() if not self._n_rows and backend == "numpy" else None
+
         def f(t_, y):
+            if fused is not None:                 # no constraint row: M(q) u̇ = f(q, u) and q̇ = W(q) u at once
+                self._raw("numpy", t_, y[:n], list(y[n:]), p) if not self._checked else None
+                out = fused(t_, *y[:n], *y[n:], *p)
+                ud = np.linalg.solve(np.array(out[0], dtype=float), np.ravel(np.array(out[1], dtype=float)))
+                qd = np.ravel(np.array(out[2], dtype=float))
+                for sl in slots:
+                    e = y[sl]
+                    k = STABILISATION * max(1.0, float(np.max(np.abs(y[n:]))))
+                    qd[sl] = qd[sl] + k * (1.0 - float(e @ e)) * e
+                return np.concatenate([qd, ud])
             u = self._rates(backend, t_, y[:n], y[n:], p)
             out = self._raw(backend, t_, y[:n], list(u), p)
             ud = _project(backend, out, self._bodies, len(self.speeds), self.independent_index,
@@ -396,6 +410,20 @@ class ProjectedModel:
             return np.concatenate([qd, ud])
 
         return f
+
+    def _fused(self):
+        """One numeric function (t, q, u, p) → (M, f, q̇) for a model without constraint rows, where the
+        speeds are all independent: M = Σ m JvᵀJv + JωᵀJH, f = Q − Σ (m Jvᵀā0 + Jωᵀh0), q̇ = W(q) u."""
+        if ("fused",) not in self._fn:
+            nu = len(self.speeds)
+            M, f = sp.zeros(nu, nu), sp.Matrix(self._pieces[-6])
+            for _, s in self._bodies:
+                m, Jv, a0, Jw, JH, h0 = self._pieces[s:s + 6]
+                M += m[0, 0] * (Jv.T * Jv) + Jw.T * JH
+                f -= m[0, 0] * (Jv.T * a0) + Jw.T * h0
+            qd = self._sym(sp.Matrix(self.kinematic.rate_expressions()))
+            self._fn[("fused",)] = sp.lambdify(self._args, [M, f, qd], modules="numpy", cse=True)
+        return self._fn[("fused",)]
 
     def state_matrix(self, q, ui, coordinates: Sequence, speeds: Sequence, values=None, dps: int = 40,
                      step: float = 1e-15) -> np.ndarray:

@@ -81,6 +81,8 @@ def _project(kind, out, bodies, n, ind, dep):
             m = float(np.ravel(m)[0])
             Mf += m * (Jv.T @ Jv) + Jw.T @ JH
             ff -= m * (Jv.T @ np.ravel(a0)) + Jw.T @ np.ravel(h0)
+    if not dep and kind != "mpmath":
+        return np.linalg.solve(Mf, ff), Mf
     T = _partials(kind, A, ind, dep, n)
     if dep:
         # particular accelerations: independent part zero, dependent part from A q̈ + c0 = 0
