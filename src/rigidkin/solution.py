@@ -30,7 +30,6 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
-import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
@@ -351,6 +350,8 @@ def _working_reactions(rows, reactions) -> list:
     The rows are linear in the reactions: each coefficient is read numerically as the change of the
     rows when that reaction goes from 0 to 1 (one lambdified function, two random states).
     """
+    import numpy as np  # here: a solution read from the derivation cache needs no numpy
+
     if not reactions or not rows:
         return []
     plain, _ = algebra.plain_state(sp.Matrix(rows))
