@@ -87,8 +87,7 @@ class Tree:
 
     def describe(self) -> str:
         n = len(self.coordinates)
-        return (f"{len(self.bodies)} bodies on {len(self.joints)} pins, {n} degree{'s' * (n != 1)} of freedom, "
-                f"{len(self.nodes) - n if len(self.nodes) > n else 0} extra")
+        return f"{len(self.bodies)} bodies on {len(self.joints)} pins, {n} degree{'s' * (n != 1)} of freedom"
 
 
 def read_tree(system) -> Tree:
