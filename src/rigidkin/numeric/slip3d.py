@@ -150,7 +150,7 @@ def start_direction(hyb, mode: dict, name: str, t_, y, p, react: dict) -> dict:
     return {name: 1 if u0[ref] > 0 else -1, direction_load(name): 1 if ref == 0 else -1}
 
 
-def nudge(hyb, mode: dict, t_, y, p, scale: float = 1e-13) -> np.ndarray:
+def nudge(hyb, mode: dict, t_, y, p, scale: float = 1e-10) -> np.ndarray:
     """The state with the slip of each 3D contact that starts to slip here (``start_direction``) set to
     ε û0, ε = ``scale`` × the state's size: the referenced direction is analytic for |v_s| > 0 only, and a
     slip of that size changes the state by less than the integrator's tolerance."""
