@@ -171,3 +171,18 @@ def test_stylesheet_shows_tex_in_jupyter_and_mathml_elsewhere(ladder, tmp_path):
     assert len(shown["lab", "rk-tex"]) > 5 and len(shown["lab", "rk-tex"]) == len(shown["lab", "rk-mathml"])
     assert all(shown["lab", "rk-tex"]) and not any(shown["lab", "rk-mathml"])
     assert not any(shown["plain", "rk-tex"]) and all(shown["plain", "rk-mathml"])
+
+
+def test_start_sliders(ladder):
+    pytest.importorskip("ipywidgets")
+    from rigidkin.report.widgets import explore
+
+    view = explore(ladder, t_final=T_END, animation=False, parameters=[], start=["theta", "dot(theta)"])
+    assert not view.sliders and set(view.start_sliders) == {"theta", "dot(theta)"}
+    assert view.start_sliders["theta"].value == pytest.approx(ladder.coordinate_info["theta"].initial)
+    view.start_sliders["theta"].value = 0.6
+    assert view.runs == 2 and view.started == {"theta": 0.6, "dot(theta)": 0.0}
+    fresh = simulate(ladder, T_END, {"theta": 0.6, "dot(theta)": 0.0})
+    np.testing.assert_allclose(view.result.q["theta"], fresh.q["theta"], rtol=1e-9, atol=1e-12)
+    with pytest.raises(RigidkinError, match="names no coordinate"):
+        explore(ladder, animation=False, parameters=[], start=["phi"])
