@@ -198,3 +198,20 @@ def test_a_changed_file_is_a_new_entry(tmp_path, cache):
     card.write_bytes(card.read_bytes() + b"\n# a comment\n")
     assert dc.key_of(str(card)) != first and dc.key_of("ladder") != first
     assert dc.key_of(str(tmp_path / "missing.toml")) is None
+
+
+def test_a_repeated_solve_prints_the_kept_output(cache, monkeypatch, capsys):
+    outputs = list((cache / "derivations").glob("*.out"))
+    assert len(outputs) == 1                                  # written by the first solve (text format)
+    monkeypatch.setattr(dc, "read", lambda *a: pytest.fail("the derivation was read"))
+    kept = _solve(capsys)
+    monkeypatch.undo()
+    assert kept == _solve(capsys, "--no-cache")
+
+
+def test_a_changed_output_is_refused(cache, monkeypatch, capsys):
+    (out,) = (cache / "derivations").glob("*.out")
+    out.write_bytes(out.read_bytes().replace(b"acos", b"asin"))
+    loads = _loads(monkeypatch)
+    text = _solve(capsys)
+    assert "asin(2/3)" not in text.replace(" ", "") and loads == []    # derived again, from the kept derivation
