@@ -124,3 +124,25 @@ def test_billiard_ball_equations_with_the_slip_direction(system):
     assert sp.simplify(eqs[u1] - s1 / sp.sqrt(s1**2 + s2**2)) == 0
     # the slip velocity along t1, t2 (Ex, Ey): ẋ − r ω_y and ẏ + r ω_x
     assert eqs[s1].has(x.diff(t)) and eqs[s2].has(y.diff(t))
+
+
+@pytest.mark.slow
+def test_rolling_ball_pulled_starts_to_slip_in_the_pull_direction():
+    """A ball at rest pulled at its centre by P = k t p̂ (p̂ oblique in the plane): it rolls with friction 2P/7
+    until that reaches µ m g, at t* = 7 µ m g/(2k), then slips along p̂: m dv̄/dt = k t − µ m g."""
+    s = billiard()
+    k, p_hat = 2.0, np.array([0.6, 0.8, 0.0])
+    F = s.inertial
+    s.force("pull", "C", k * rk.t * (0.6 * F.x + 0.8 * F.y), body=s.bodies["ball"])
+    t_star = 7 * MU * M * G / (2 * k)
+    res = simulate(s, 1.5 * t_star, {"x": 0.0, "y": 0.0})
+    assert res.reached_end
+    assert [e.kind for e in res.events] == ["slips"]
+    assert abs(res.events[0].t - t_star) < 1e-9
+    assert res.segments[0].mode == {"P": "stick"} and res.segments[1].mode == {"P": "slip"}
+    for t in (0.5 * t_star, t_star, 1.2 * t_star, 1.5 * t_star):
+        speed = 5 * k * min(t, t_star) ** 2 / (14 * M)
+        if t > t_star:
+            speed += k * (t**2 - t_star**2) / (2 * M) - MU * G * (t - t_star)
+        st = res.at(t)
+        assert np.allclose([st["dot(x)"], st["dot(y)"]], speed * p_hat[:2], rtol=0, atol=1e-7)
