@@ -9,7 +9,9 @@ For n = 5, 10, 20, 30, 50 (``--sizes``) and the bundled chain of n rods (example
   and lambdified M, f) and the projected route (``numeric.projected.ProjectedModel.rhs``), each in a
   child process with a time limit (``--limit`` seconds for building it), where they finish.
 
-Every RHS is checked against Pinocchio's accelerations first (relative angles: θ̈_i − θ̈_{i−1}).
+rigidkin's RHS is timed with its step in C (``numeric/aba_c.py``, what a gravity-only tree uses) and
+in numpy (what a tree with other loads uses).  Every RHS is checked against Pinocchio's accelerations
+first (relative angles: θ̈_i − θ̈_{i−1}).
 Times are CPU seconds per call (best of repeats); the table gives the growth from the smallest to the
 largest n and the ratio to Pinocchio, all measured in one run.
 
@@ -80,13 +82,13 @@ def relative(theta):
     return np.concatenate([theta[:1], np.diff(theta)])
 
 
-def measure_articulated(n):
+def measure_articulated(n, use_c=True):
     from rigidkin.numeric.articulated import ArticulatedModel
     from rigidkin.numeric.state import parameter_vector
 
     s = chain(n)
     t0 = CLOCK()
-    am = ArticulatedModel(s)
+    am = ArticulatedModel(s, use_c=use_c)
     p = parameter_vector(s, am.layout)
     q, u = state(n)
     y = np.concatenate([q, u, [0.0]])
@@ -165,9 +167,11 @@ def main(argv=None):
     rows = []
     for n in args.sizes:
         build, t_aba, acc = measure_articulated(n)
+        _, t_np, acc_np = measure_articulated(n, use_c=False)
         t_pin, acc_pin = measure_pinocchio(n)
-        err = float(np.max(np.abs(relative(acc) - acc_pin)) / max(1.0, np.max(np.abs(acc_pin))))
-        row = {"n": n, "build": build, "aba": t_aba, "pin": t_pin, "err": err}
+        err = max(float(np.max(np.abs(relative(a) - acc_pin)) / max(1.0, np.max(np.abs(acc_pin))))
+                  for a in (acc, acc_np))
+        row = {"n": n, "build": build, "aba": t_aba, "numpy": t_np, "pin": t_pin, "err": err}
         for kind in ("symbolic", "projected"):
             res = measure_child(kind, n, args.limit)
             if res is not None:
@@ -177,19 +181,21 @@ def main(argv=None):
         print(f"n = {n}: done", flush=True)
     us = 1e6
     print()
-    print(f"{'n':>3} | {'rigidkin O(n) µs':>16} | {'Pinocchio µs':>12} | {'ratio':>6} | {'agree':>8} | "
+    print(f"{'n':>3} | {'rigidkin O(n) µs':>16} | {'(numpy) µs':>10} | {'Pinocchio µs':>12} | {'ratio':>6} | "
+          f"{'agree':>8} | "
           f"{'symbolic µs (build s)':>22} | {'projected µs (build s)':>23}")
     for r in rows:
         cells = []
         for kind in ("symbolic", "projected"):
             v = r.get(kind)
             cells.append(f"{v[1] * us:10.1f} ({v[0]:7.1f})" if v else f"> {args.limit:.0f} s build")
-        print(f"{r['n']:>3} | {r['aba'] * us:16.1f} | {r['pin'] * us:12.2f} | {r['aba'] / r['pin']:6.0f} | "
+        print(f"{r['n']:>3} | {r['aba'] * us:16.1f} | {r['numpy'] * us:10.0f} | {r['pin'] * us:12.2f} | "
+              f"{r['aba'] / r['pin']:6.1f} | "
               f"{r['err']:8.1e} | {cells[0]:>22} | {cells[1]:>23}")
     a, b = rows[0], rows[-1]
     print()
     print(f"growth of the time per RHS from n = {a['n']} to n = {b['n']} (×{b['n'] / a['n']:.0f} bodies):")
-    print(f"  rigidkin O(n) RHS  ×{b['aba'] / a['aba']:.1f}")
+    print(f"  rigidkin O(n) RHS  ×{b['aba'] / a['aba']:.1f} (C step); ×{b['numpy'] / a['numpy']:.1f} (numpy step)")
     print(f"  Pinocchio ABA      ×{b['pin'] / a['pin']:.1f}")
     for kind in ("symbolic", "projected"):
         done = [r for r in rows if r.get(kind)]
