@@ -189,9 +189,13 @@ def _linear(angle, cindex, params, where):
 def _edges(system, cindex, params):
     edges: list[Edge] = []
     index = {system.inertial.ref: -1}
+    if getattr(system, "speed_groups", None):
+        raise NotATree("the model has generalised speeds other than the coordinates' rates")
     for name, fr in system.frames.items():
         if fr.parent is None:
             continue
+        if getattr(fr, "quaternion", None) is not None or getattr(fr, "speeds", None) is not None:
+            raise NotATree(f"frame {name} is oriented by a quaternion or has its own speeds")
         parent = index.get(fr.parent.ref)
         if parent is None:
             raise NotATree(f"frame {name} turns from a frame defined after it")
