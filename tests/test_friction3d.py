@@ -124,6 +124,10 @@ def test_billiard_ball_equations_with_the_slip_direction(system):
     assert sp.simplify(eqs[u1] - s1 / sp.sqrt(s1**2 + s2**2)) == 0
     # the slip velocity along t1, t2 (Ex, Ey): ẋ − r ω_y and ẏ + r ω_x
     assert eqs[s1].has(x.diff(t)) and eqs[s2].has(y.diff(t))
+    from rigidkin.report.text import solution_text
+
+    shown = solution_text(sol)
+    assert "Slip direction (while the slip speed |v_s| > 0" in shown and "û_P1 = s_P1/" in shown
 
 
 @pytest.mark.slow

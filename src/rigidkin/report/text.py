@@ -143,6 +143,10 @@ def solution_text(sol, reactions=None, eom: bool = True) -> str:
         if len(sol.regimes) > 1:
             out += [f"Regime {i + 1} of {len(sol.regimes)}: while {r.describe()}", ""]
         out += _regime(sol, r, reactions, labels, eom)
+    slips = [st for st in sol.trace.steps if st.title.startswith("Slip velocity and its direction at ")]
+    if slips:                   # 3D sliding friction −µN û (model.friction3d): what û stands for
+        out += ["", "Slip direction (while the slip speed |v_s| > 0; v_s = s1 t1 + s2 t2)"]
+        out += [f"{_INDENT}{text(lhs)} = {text(rhs)}" for st in slips for lhs, rhs in st.equations]
     return terminal_safe("\n".join(out))
 
 
