@@ -10,10 +10,12 @@ confirmed symbolically when the expression is small.
 
 from __future__ import annotations
 
+import cmath
 import random
 from collections.abc import Iterable, Mapping
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 from sympy.physics.vector import dynamicsymbols
 
 from .timelimit import time_limit  # noqa: F401  (public here too: algebra.time_limit)
@@ -68,6 +70,74 @@ def numeric_value(expr: sp.Basic, rng: random.Random) -> complex:
     values = random_point(free, rng)
     values[t] = sp.Float(rng.uniform(0.1, 1.0))
     return complex(plain.xreplace(values).evalf(30))
+
+
+def state_point(exprs, rng: random.Random, t_value: float, exclude=()) -> dict:
+    """Random values of everything ``exprs`` depend on, keyed by the objects themselves (q(t), q̇, q̈,
+    parameters) — the same values ``random_point`` gives the plain symbols of ``plain_state``, without
+    rewriting the expressions; time takes ``t_value``; the symbols in ``exclude`` get no value."""
+    funcs: set = set()
+    derivs: set = set()
+    syms: set = set()
+    for e in exprs:
+        for a in sp.sympify(e).atoms(sp.Symbol, sp.Derivative, AppliedUndef):
+            (derivs if isinstance(a, sp.Derivative) else funcs if isinstance(a, AppliedUndef) else syms).add(a)
+    plain: dict = {}
+    funcs = {f for f in funcs if f.args == (t,)}
+    for d in derivs:
+        if d.expr in funcs:
+            plain[sp.Symbol(f"_{d.expr.func.__name__}_d{sum(c for _, c in d.variable_count)}", real=True)] = d
+    for f in funcs:
+        plain[sp.Symbol(f"_{f.func.__name__}_d0", real=True)] = f
+    syms.discard(t)
+    syms.difference_update(exclude)
+    values = random_point(list(plain) + list(syms), rng)
+    out = {plain.get(k, k): float(v) for k, v in values.items()}
+    out[t] = t_value
+    return out
+
+
+_UNARY = {sp.sin: cmath.sin, sp.cos: cmath.cos, sp.tan: cmath.tan, sp.exp: cmath.exp, sp.log: cmath.log,
+          sp.asin: cmath.asin, sp.acos: cmath.acos, sp.atan: cmath.atan, sp.sinh: cmath.sinh,
+          sp.cosh: cmath.cosh, sp.tanh: cmath.tanh, sp.Abs: abs}
+
+
+def evaluate(exprs, values: Mapping) -> list[complex]:
+    """Each expression as a complex number at ``values`` (symbols, q(t), q̇ ... → numbers): machine
+    arithmetic over the expression tree, each shared subexpression once (no code generation, no 30-digit
+    evalf).  A value that cannot be formed (0⁻¹, an unknown function without arguments) is nan."""
+    memo: dict = {k: complex(v) for k, v in values.items()}
+
+    def ev(e):
+        hit = memo.get(e)
+        if hit is not None:
+            return hit
+        try:
+            if e.is_Number or e.is_NumberSymbol:
+                v = complex(e)
+            elif e.is_Add:
+                v = sum(ev(a) for a in e.args)
+            elif e.is_Mul:
+                v = 1
+                for a in e.args:
+                    v *= ev(a)
+            elif e.is_Pow:
+                b, x = ev(e.base), e.exp
+                v = b ** int(x) if x.is_Integer else (cmath.sqrt(b) if x == sp.S.Half else b ** ev(x))
+            elif e.func in _UNARY:
+                v = _UNARY[e.func](ev(e.args[0]))
+            elif e.is_Function and e.args:
+                args = [ev(a) for a in e.args]
+                v = complex(e.func(*[sp.Float(a.real) if a.imag == 0 else sp.Float(a.real) + sp.I * a.imag
+                                     for a in args]).evalf())
+            else:
+                v = complex(e.evalf())
+        except (ZeroDivisionError, OverflowError, TypeError, ValueError):
+            v = complex("nan")
+        memo[e] = v
+        return v
+
+    return [ev(sp.sympify(e)) for e in exprs]
 
 
 def is_zero(expr: sp.Basic, trials: int = 4, seed: int = 1, tol: float = 1e-10) -> bool:

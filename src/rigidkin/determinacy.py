@@ -29,14 +29,11 @@ def _numeric(M: sp.Matrix, seed: int) -> np.ndarray:
 
 
 def _numeric_fast(M: sp.Matrix, seed: int) -> np.ndarray:
-    """Like ``_numeric`` but through lambdify (machine floats): for large coefficient matrices."""
-    plain, _ = algebra.plain_state(M)
-    syms = sorted(plain.free_symbols - {t}, key=str)
-    rng = random.Random(seed)
-    vals = algebra.random_point(syms, rng)
-    f = sp.lambdify([t] + syms, plain, "numpy")
+    """Like ``_numeric`` in machine arithmetic (``algebra.evaluate``): for large coefficient matrices."""
+    entries = list(M)
+    vals = algebra.state_point(entries, random.Random(seed), 0.41)
     with np.errstate(all="ignore"):
-        return np.array(f(0.41, *[float(vals[s]) for s in syms]), dtype=complex)
+        return np.array(algebra.evaluate(entries, vals), dtype=complex).reshape(M.shape)
 
 
 def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "") -> list[int]:

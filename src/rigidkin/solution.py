@@ -329,46 +329,56 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
 
 
 def _projected_rows(setup, balances, sign_map):
-    """Σ over bodies of (F − m ā)·∂v̄/∂u + (M̄ − dH̄/dt)·∂ω/∂u for each independent rate u (negated)."""
-    kin, red = setup.kin, setup.reduction
-    Fr = kin.F.ref
-    rows = []
-    for q in red.independent:
-        u = q.diff(t)
-        row = sp.Integer(0)
-        for bal in balances:
-            pv = bal.v_centre.diff(u, Fr, var_in_dcm=False)
-            pw = bal.omega.diff(u, Fr, var_in_dcm=False)
-            row += (bal.force - bal.mass_accel).dot(pv) + (bal.moment - bal.momentum_rate).dot(pw)
-        rows.append(-setup.scalar(row).xreplace(sign_map))
-    return rows
+    """Σ over bodies of (F − m ā)·∂v̄/∂u + (M̄ − dH̄/dt)·∂ω/∂u for each independent rate u (negated).
+
+    The partial velocities are the coefficients of the rates in v̄ and ω, read in one pass from their
+    components (``linear_form``), kept in the frames v̄ and ω are written in (v̄ resolved in the inertial
+    frame when it is written in more than two); the force (or moment) is resolved once into each of those
+    frames, and each dot product is a sum of products.
+    """
+    from .laws.components import dot, in_frame
+
+    rates = [q.diff(t) for q in setup.reduction.independent]
+    Fr = setup.kin.F.ref
+    terms: list[list] = [[] for _ in rates]
+    for bal in balances:
+        # each partial velocity in the frames the velocity is written in (no angle brought into a term where
+        # it cancels); a mass centre's velocity written in many frames (a chain) in the inertial frame, so
+        # that the force is resolved once rather than into every one of them
+        v = bal.v_centre
+        many = len(getattr(v, "args", ())) > 2
+        parts = [(bal.force - bal.mass_accel, [(sp.Matrix(in_frame(v, Fr)), Fr)] if many else getattr(v, "args", ()))]
+        parts.append((bal.moment - bal.momentum_rate, getattr(bal.omega, "args", ())))
+        for force, velocity in parts:
+            for m, frame in velocity:
+                partial, _ = linear_form(list(m), rates)
+                if not any(partial):
+                    continue
+                f = in_frame(force, frame)
+                for k in range(len(rates)):
+                    terms[k].append(dot(f, partial.col(k)))
+    return [-setup.scalar(sp.Add(*row)).xreplace(sign_map) for row in terms]
 
 
 def _working_reactions(rows, reactions) -> list:
     """The reactions that remain in the projected rows (they do work: e.g. N under sliding friction).
 
-    The rows are linear in the reactions: each coefficient is read numerically as the change of the
-    rows when that reaction goes from 0 to 1 (one lambdified function, two random states).
+    The rows are linear in the reactions: their coefficients (one pass, ``linear_form``) are evaluated
+    in machine arithmetic at two random states.
     """
-    import numpy as np  # here: a solution read from the derivation cache needs no numpy
-
     if not reactions or not rows:
         return []
-    plain, _ = algebra.plain_state(sp.Matrix(rows))
-    others = sorted(plain.free_symbols - {t} - set(reactions), key=str)
-    f = sp.lambdify([t] + others + list(reactions), plain, "numpy")
+    import numpy as np
+
+    C, _ = linear_form(rows, reactions)
+    entries = list(C)
     found = np.zeros(len(reactions))
     for seed in (3, 4):
-        vals = algebra.random_point(others, random.Random(seed))
-        args = [0.41] + [float(vals[s]) for s in others]
+        vals = algebra.state_point(entries, random.Random(seed), 0.41, exclude=reactions)
         with np.errstate(all="ignore"):
-            base = np.array(f(*args, *([0.0] * len(reactions))), dtype=complex).ravel()
-            for j in range(len(reactions)):
-                unit = [0.0] * len(reactions)
-                unit[j] = 1.0
-                d = np.array(f(*args, *unit), dtype=complex).ravel() - base
-                found[j] = max(found[j], float(np.abs(d).max()))
-    scale = max(1.0, float(found.max()))
+            num = np.abs(np.array(algebra.evaluate(entries, vals), dtype=complex).reshape(C.shape))
+        found = np.maximum(found, np.nan_to_num(num, nan=np.inf).max(axis=0))
+    scale = max(1.0, float(found[np.isfinite(found)].max())) if np.isfinite(found).any() else 1.0
     return [r for j, r in enumerate(reactions) if found[j] > 1e-9 * scale]
 
 

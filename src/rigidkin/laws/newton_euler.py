@@ -18,6 +18,7 @@ from sympy.physics.vector import Vector, dynamicsymbols
 from ..errors import ModelError
 from ..mode import ModeSetup
 from ..trace import LazyEquations
+from .components import in_frame
 
 t = dynamicsymbols._t
 
@@ -98,39 +99,35 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     """The scalar Newton–Euler equations of every body, recorded in the trace as they are formed."""
     kin, tr = setup.kin, setup.trace
     F = kin.F
-    force_dirs = [(F.x, F.basis[0]), (F.y, F.basis[1])] + ([] if kin.planar else [(F.z, F.basis[2])])
-    moment_dirs = [(F.z, F.basis[2])] if kin.planar else [(F.x, F.basis[0]), (F.y, F.basis[1]),
-                                                          (F.z, F.basis[2])]
+    n_force = 2 if kin.planar else 3
     out = []
     for bal in body_balances(setup):
         b = bal.body
         _, _, apps = body_loads(setup, b)
         tr.add("Free-body diagram", f"Loads on {b.name}",
-               [(sp.Symbol(a.label.replace(" ", "_")), _ind(setup, a.vector)) for a in apps],
+               LazyEquations(lambda apps=apps: [(sp.Symbol(a.label.replace(" ", "_")), _ind(setup, a.vector))
+                                                for a in apps]),
                "every force and torque on the body; reactions are unknowns: "
                + (", ".join(str(a.reaction) for a in apps if a.reaction is not None) or "none") + ".")
         if not b.is_massless:
             tr.add("Inertia and momentum", f"Inertia and angular momentum of {b.name}",
-                   [(sp.Symbol(f"I_{b.name}"), b.inertia), (sp.Symbol(f"H_{b.centre.name}"),
-                                                            _ind(setup, b.inertia.dot(kin.omega_of(b))))],
+                   LazyEquations(lambda b=b: [(sp.Symbol(f"I_{b.name}"), b.inertia),
+                                              (sp.Symbol(f"H_{b.centre.name}"),
+                                               _ind(setup, b.inertia.dot(kin.omega_of(b))))]),
                    f"{b.shape.kind} ({', '.join(f'{k} = {v}' for k, v in b.shape.dimensions.items())}); "
                    "H̄ = Ī·ω.")
         ref = "mass centre" if not b.is_massless else "reference point"
-        for e, name in force_dirs:
-            lhs = setup.scalar(bal.force.dot(e))
-            rhs = setup.scalar(bal.mass_accel.dot(e))
-            out.append(BalanceEquation(f"Euler's 1st law for {b.name} along {name}", b.name,
-                                       "newton-euler", lhs, rhs))
-        dirs = moment_dirs
-        if not kin.planar:
-            # in 3D, resolve Euler's 2nd law along the body's own axes: Euler's equations in their usual form
-            fr = b.frame
-            dirs = [(fr.x, fr.basis[0]), (fr.y, fr.basis[1]), (fr.z, fr.basis[2])]
-        for e, name in dirs:
-            lhs = setup.scalar(bal.moment.dot(e))
-            rhs = setup.scalar(bal.momentum_rate.dot(e))
-            out.append(BalanceEquation(f"Euler's 2nd law for {b.name} about its {ref}, along {name}", b.name,
-                                       "newton-euler", lhs, rhs))
+        # each vector resolved once into its components (the same products Vector.dot forms per axis)
+        force, mass_accel = in_frame(bal.force, F.ref), in_frame(bal.mass_accel, F.ref)
+        for i in range(n_force):
+            out.append(BalanceEquation(f"Euler's 1st law for {b.name} along {F.basis[i]}", b.name,
+                                       "newton-euler", setup.scalar(force[i]), setup.scalar(mass_accel[i])))
+        # planar: the moment equation about Ez; in 3D along the body's own axes (Euler's equations)
+        fr = F if kin.planar else b.frame
+        moment, rate = in_frame(bal.moment, fr.ref), in_frame(bal.momentum_rate, fr.ref)
+        for i in ((2,) if kin.planar else (0, 1, 2)):
+            out.append(BalanceEquation(f"Euler's 2nd law for {b.name} about its {ref}, along {fr.basis[i]}",
+                                       b.name, "newton-euler", setup.scalar(moment[i]), setup.scalar(rate[i])))
     kept = []
     for eq in out:
         if eq.expr == 0 or kin.is_zero(eq.expr):
