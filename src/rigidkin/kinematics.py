@@ -23,6 +23,7 @@ from sympy.physics.vector import Vector, dynamicsymbols
 
 from . import algebra
 from .errors import ConstraintError
+from .model.speeds import speeds_of
 from .trace import Trace
 
 if TYPE_CHECKING:
@@ -353,10 +354,11 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
     """Split constraint rows into built-in and rate-relating; eliminate dependent rates; integrate."""
     import numpy as np
 
-    coords = list(system.coordinates)
+    ke = speeds_of(system)
+    coords = [q for q in system.coordinates if q not in ke.replaced]    # Euler parameters: q̇ = W(q) u
     built, relating, exprs = [], [], []
     for row in rows:
-        v = kin.simplify_expr(row.velocity)
+        v = kin.simplify_expr(ke.substitute(row.velocity))
         if algebra.is_zero(v):
             built.append(row)
         else:
@@ -369,7 +371,7 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
                       "as they were chosen, so it relates no rates; it still brings its reaction "
                       f"{row.reaction}.")
     if not relating:
-        return Reduction(tuple(coords), (), built_in=tuple(built))
+        return _kinematic_equations(Reduction(tuple(coords), (), built_in=tuple(built)), ke, kin, trace)
     rates = _rates(coords)
     A, b = linear_form(exprs, rates)
     if any(algebra.plain_state(e)[0].has(*[sp.Symbol(f"_{q.func.__name__}_d2") for q in coords])
@@ -427,7 +429,7 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
     rate_map = {q.diff(t): sol[k] for k, q in enumerate(dep)}
     accel_map = {}
     for q in dep:
-        d = sp.diff(rate_map[q.diff(t)], t).xreplace(rate_map)
+        d = ke.substitute(sp.diff(rate_map[q.diff(t)], t)).xreplace(rate_map)
         accel_map[q.diff(t, 2)] = kin.simplify_expr(d)
     relations = []
     for q in dep:
@@ -450,6 +452,34 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
                       list(red.coord_map.items()),
                       "each relation is integrable: a gap that vanishes, or an exact rate relation "
                       "integrated from the initial configuration.")
+    return _kinematic_equations(red, ke, kin, trace)
+
+
+def _kinematic_equations(red: Reduction, ke, kin: Kinematics, trace) -> Reduction:
+    """Add the kinematic differential equations q̇ = W(q) u of the coordinates whose rates are not their
+    speeds (Euler parameters; Euler angles with angular speeds) to the reduction's rate and acceleration
+    maps: those coordinates follow their speeds as dependent rates follow the constraints."""
+    if not ke.qdot:
+        return red
+    rate = {k: sp.sympify(v).xreplace(red.rate_map) for k, v in ke.qdot.items()}
+    full = {**red.rate_map, **rate}
+    accel = {}
+    for k, v in rate.items():
+        d = ke.substitute(sp.diff(v, t)).xreplace(red.accel_map).xreplace(full)
+        accel[k.expr.diff(t, 2)] = kin.simplify_expr(d)
+    red.rate_map = {**red.rate_map, **rate}
+    red.accel_map = {**red.accel_map, **accel}
+    red.dependent = tuple(red.dependent) + tuple(k.expr for k in rate)
+    red.relations = tuple(red.relations) + tuple((k, v, "kinematic differential equation") for k, v in rate.items())
+    if trace is not None:
+        for g in ke.groups:
+            what = (f"the Euler parameters of {g.frame.name} follow ė = ½ Q(e) w, which keeps |e| constant"
+                    if g.kind == "quaternion" else
+                    f"the angles of {g.frame.name} follow from its angular-velocity components")
+            trace.add("Kinematics", f"Kinematic differential equations of {g.frame.name}: q̇ = W(q) u",
+                      [(q.diff(t), rate[q.diff(t)]) for q in g.coordinates] + [(sp.Symbol("W"), g.W)],
+                      f"the speeds {', '.join(n for n in g.names)} are the components of the angular velocity "
+                      f"of {g.frame.name} along its own basis (Kane's choice); {what}.")
     return red
 
 

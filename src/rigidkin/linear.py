@@ -69,8 +69,14 @@ class _Probe:
         base = {s: float(v) for s, v in algebra.random_point(syms, rng).items()}
         points = [base] + [{**base, **st} for st in special_states(coords, rng)]
         fn = sp.lambdify([t] + syms, plain, "numpy")
+        def at(p):
+            try:
+                return np.array(fn(0.41, *[p[s] for s in syms]), dtype=complex)
+            except ZeroDivisionError:         # e.g. Euler parameters all zero: no rotation, not a state
+                return np.full(plain.shape, np.nan, dtype=complex)
+
         with np.errstate(all="ignore"):
-            self.mats = np.array([np.array(fn(0.41, *[p[s] for s in syms]), dtype=complex) for p in points])
+            self.mats = np.array([at(p) for p in points])
         self.scale = max(1.0, float(np.nanmax(np.abs(self.mats[0])))) if self.mats[0].size else 1.0
 
     def zero_at(self, i: int, j: int) -> int:

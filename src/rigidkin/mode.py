@@ -158,7 +158,9 @@ def _check_model(system, kin) -> None:
         for a in (fr.angle,) + tuple(fr.angles or ()):
             if a is not None:
                 used |= {f for f in sp.sympify(a).atoms(sp.Function)}
-    unused = [q for q in system.coordinates if q not in used]
+    from .model.speeds import is_quasi
+
+    unused = [q for q in system.coordinates if q not in used and not is_quasi(system, q)]
     if unused:
         names = ", ".join(q.func.__name__ for q in unused)
         raise ModelError(f"the coordinates {names} locate no point and turn no frame, so they move nothing.",

@@ -151,6 +151,11 @@ class _Builder(ConstraintsAndLoads, Questions):
         for name, c in sp_.coordinates.items():
             self.coordinate(name, c)
         self.frames()
+        if not self.s.coordinates:
+            raise InputError("the required field 'coordinates' is missing: nothing can move.",
+                             where=self.where("coordinates"),
+                             hint="Add a [coordinates] table, or orient a frame by a quaternion "
+                                  "(quaternion = [\"e0\", \"e1\", \"e2\", \"e3\"]), which declares its own.")
         pending = self.points(dict(sp_.points))
         for name, b in sp_.bodies.items():
             self.add_body(name, b)
@@ -256,7 +261,9 @@ class _Builder(ConstraintsAndLoads, Questions):
             basis = tuple(f.basis)
             for i, b in enumerate(basis):
                 self.declared(b, "basis vector", path + ("basis", i), vectors=False)
-        if f.sequence is not None:
+        if f.quaternion is not None or f.speeds is not None or f.initial is not None or f.rates is not None:
+            fr = self.orientation_frame(name, f, parent, basis, path)
+        elif f.sequence is not None:
             if f.angle is not None:
                 raise InputError("give either angle (with axis) or sequence (with angles), not both.",
                                  where=self.where(*path))
@@ -280,6 +287,46 @@ class _Builder(ConstraintsAndLoads, Questions):
             for b in fr.basis:
                 self.declared(b, "basis vector", path, vectors=False)
         self.scope.add_frame(name, fr.basis, (fr.x, fr.y, fr.z))
+
+    def orientation_frame(self, name, f: S.FrameSpec, parent, basis, path):
+        """A frame oriented by a quaternion, or by a sequence with angular speeds (``rigidkin.model.speeds``)."""
+        if f.quaternion is None:
+            if f.sequence is None or f.speeds is None:
+                field = "initial" if f.initial is not None else "rates" if f.rates is not None else "speeds"
+                raise InputError(f"{field} belongs to a frame oriented by a quaternion (or, for speeds and rates, by "
+                                 "a sequence with speeds).", where=self.where(*path, field),
+                                 hint='Write quaternion = ["e0", "e1", "e2", "e3"], or sequence and angles with '
+                                      'speeds = ["w1", "w2", "w3"].')
+            if f.initial is not None:
+                raise InputError("initial is the quaternion's start; a sequence's angles start with their "
+                                 "coordinates.", where=self.where(*path, "initial"))
+        else:
+            for key in ("angle", "sequence", "angles"):
+                if getattr(f, key) is not None:
+                    raise InputError(f"give either a quaternion or {key}, not both.", where=self.where(*path, key))
+            for i, n in enumerate(f.quaternion):
+                self.declared(n, "coordinate", path + ("quaternion", i))
+        for i, n in enumerate(f.speeds or ()):
+            self.declared(n, "speed", path + ("speeds", i))
+        initial = None if f.initial is None else \
+            tuple(to_si(v, None, self.where(*path, "initial", i), ONE) for i, v in enumerate(f.initial))
+        rates = None if f.rates is None else \
+            tuple(to_si(v, None, self.where(*path, "rates", i), ONE / TIME) for i, v in enumerate(f.rates))
+        if f.quaternion is not None:
+            fr = self.call(path, self.s.frame, name, parent, basis=basis, description=f.description,
+                           quaternion=tuple(f.quaternion), speeds=None if f.speeds is None else tuple(f.speeds),
+                           initial=initial, rates=rates)
+            for q in fr.quaternion:
+                self.scope.names[q.func.__name__] = q
+                self.scope.coordinates[q.func.__name__] = q
+        else:
+            angles = tuple(self.scalar(a, path + ("angles", i)) for i, a in enumerate(f.angles or ()))
+            fr = self.call(path, self.s.frame, name, parent, basis=basis, description=f.description,
+                           sequence=f.sequence, angles=angles, speeds=tuple(f.speeds), rates=rates)
+        group = self.s.speed_groups[name]
+        for n, w in zip(group.names, group.speeds):
+            self.scope.names[n] = w
+        return fr
 
     @staticmethod
     def _is_unit(frame, spec) -> bool:

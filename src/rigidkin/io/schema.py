@@ -86,6 +86,12 @@ class FrameSpec(Strict):
     basis: list[Name] | None = Field(default=None, min_length=3, max_length=3)
     sequence: str | None = None
     angles: list[Expr] | None = Field(default=None, min_length=3, max_length=3)
+    # a quaternion: the names of the four Euler parameters (scalar first), declared as coordinates
+    quaternion: list[Name] | None = Field(default=None, min_length=4, max_length=4)
+    # the frame's angular-velocity components along its basis as speeds (quaternion or sequence)
+    speeds: list[Name] | None = Field(default=None, min_length=3, max_length=3)
+    initial: list[Quantity] | None = Field(default=None, min_length=4, max_length=4)   # the quaternion's start
+    rates: list[Quantity] | None = Field(default=None, min_length=3, max_length=3)     # the speeds' start
     description: str = ""
 
 
@@ -446,7 +452,7 @@ class ProblemFile(Strict):
     statement: str = ""
     parameters: dict[Name, ParameterSpec] = {}
     definitions: dict[Name, DefinitionSpec | Expr] = {}
-    coordinates: dict[Name, CoordinateSpec] = Field(min_length=1)
+    coordinates: dict[Name, CoordinateSpec] = {}      # none only where a quaternion frame brings its own
     frames: dict[Name, FrameSpec] = {}
     points: dict[Name, PointSpec] = {}
     bodies: dict[Name, BodySpec] = Field(min_length=1)

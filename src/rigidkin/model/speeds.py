@@ -90,6 +90,7 @@ class SpeedGroup:
     kind: str
     names: tuple
     initial: tuple = (None, None, None)
+    quasi: tuple = ()          # quasi-coordinates π with π̇ = w (what the symbolic core integrates)
 
     @property
     def W(self) -> sp.Matrix:
@@ -147,7 +148,8 @@ class KinematicEquations:
         groups = list(getattr(system, "speed_groups", {}).values())
         self.groups = groups
         owner = {q: g for g in groups for q in g.coordinates}
-        self.configuration = tuple(system.coordinates)
+        quasi = {p for g in groups for p in g.quasi}
+        self.configuration = tuple(q for q in system.coordinates if q not in quasi)
         speeds, seen = [], set()
         for q in self.configuration:
             g = owner.get(q)
@@ -191,6 +193,23 @@ class KinematicEquations:
     def speed_rates(self) -> tuple:
         """u̇ (the speeds' derivatives: q̈_j or ẇ)."""
         return tuple(u.diff(t) for u in self.speeds)
+
+
+def quasi_coordinate(name: str, speed) -> sp.Expr:
+    """A quasi-coordinate π(t) whose time derivative is the speed w(t) (π̇ = w, π̈ = ẇ).
+
+    No position depends on it; it lets the symbolic core, which reads rates as q̇ and accelerations
+    as q̈ of its coordinates, work in the speeds unchanged: its rate *is* w, so every equation is
+    written in w and ẇ."""
+    from sympy.core.function import UndefinedFunction
+
+    func = UndefinedFunction(name, __dict__={"fdiff": lambda self, argindex=1: speed}, real=True)
+    return func(t)
+
+
+def is_quasi(system, q) -> bool:
+    """True for a quasi-coordinate (the integral of a speed, which locates nothing)."""
+    return any(q in g.quasi for g in getattr(system, "speed_groups", {}).values())
 
 
 def speeds_of(system) -> KinematicEquations:

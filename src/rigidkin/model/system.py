@@ -295,9 +295,27 @@ class System(ConstraintMethods, LoadMethods):
 
         fr = self._plain_frame(name, parent, None, "z", basis_t, description, None, None, orient)
         group = holder["group"]
+        self._quasi_coordinates(group)
         self.speed_groups[name] = group
         self._cache.clear()
         return fr
+
+    def _quasi_coordinates(self, group) -> None:
+        """For each speed w, a quasi-coordinate ``<w>_int`` with π̇ = w: the symbolic core's coordinate
+        whose rate is the speed (initial rate: the speed's initial value).  It locates nothing."""
+        from .speeds import quasi_coordinate
+
+        quasi = []
+        for n, w, w0 in zip(group.names, group.speeds, group.initial):
+            name = f"{n}_int"
+            self._claim(name, "coordinate", owner=f"quasi-coordinate {name} of frame {group.frame.name}")
+            sym = quasi_coordinate(name, w)
+            self._coordinates[name] = Coordinate(
+                name, sym, f"quasi-coordinate: the integral of the speed {n} (its rate {n} is the component of the "
+                           f"angular velocity of {group.frame.name} along its basis; it locates nothing)",
+                "angle", ONE, 0.0, w0, extra={"quasi": True, "speed": n})
+            quasi.append(sym)
+        group.quasi = tuple(quasi)
 
     def angular_speeds(self, frame: Frame | str, names=None, coordinates=None, rates=None) -> tuple:
         """Kane's choice for a frame oriented by angles: the components of its angular velocity (in the
@@ -323,6 +341,7 @@ class System(ConstraintMethods, LoadMethods):
         if rates is not None:
             group.initial = tuple(None if v is None else self._number(v, f"{where}, initial rate") for v in rates)
         fr.speeds = group.speeds
+        self._quasi_coordinates(group)
         self.speed_groups[fr.name] = group
         self._cache.clear()
         return group.speeds
