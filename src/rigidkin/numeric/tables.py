@@ -135,17 +135,11 @@ def _cells(a: np.ndarray, floats: _FloatCells) -> list[str]:
         return floats(a)
     if kind in "iu":
         return list(map(str, a.tolist()))
-    memo: dict = {}
-    out = []
-    for v in a.tolist():
-        key = (type(v), v) if isinstance(v, (str, int, float, type(None))) else None
-        cell = memo.get(key) if key is not None else None
-        if cell is None:
-            cell = _text_cell(v)
-            if key is not None:
-                memo[key] = cell
-        out.append(cell)
-    return out
+    values = a.tolist()
+    if set(map(type, values)) <= {str}:          # words (a status): each distinct one made once
+        cells = {v: _text_cell(v) for v in set(values)}
+        return list(map(cells.__getitem__, values))
+    return [_text_cell(v) for v in values]
 
 
 def _columns(columns: Mapping[str, np.ndarray]) -> tuple[list[str], list[np.ndarray], int]:
