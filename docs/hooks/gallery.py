@@ -22,6 +22,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -222,8 +223,12 @@ def on_files(files, config):
 
     names = examples.names()
     folder = cache_folder() / source_key()
+    cached = sum(_drawn(n, folder / n) is not None for n in names)
+    start = time.perf_counter()
     _DRAWN.clear()
     _DRAWN.update(draw_all(names, folder))
+    log.info("gallery: %d examples drawn in %.1f s (%d from the cache %s)", len(names), time.perf_counter() - start,
+             cached, folder)
     for name, meta in _DRAWN.items():
         if "error" in meta:
             log.warning("gallery: example '%s' could not be drawn: %s", name, meta["error"])

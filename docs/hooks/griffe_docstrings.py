@@ -10,7 +10,10 @@ from __future__ import annotations
 
 import re
 
-import griffe
+try:                                   # the docs extra; markdown() itself needs nothing
+    import griffe
+except ImportError:                    # pragma: no cover - without the docs extra
+    griffe = None
 
 ROLE = re.compile(r":(?:func|class|mod|meth|attr|data|obj|exc):`~?([^`]+)`")
 
@@ -41,7 +44,10 @@ def markdown(text: str) -> str:
     return "\n".join(out)
 
 
-class DocstringsAsMarkdown(griffe.Extension):
-    def on_object(self, *, obj, loader, **kwargs) -> None:  # noqa: ARG002 - griffe's signature
-        if not obj.is_alias and obj.docstring is not None:
-            obj.docstring.value = markdown(obj.docstring.value)
+if griffe is not None:
+    class DocstringsAsMarkdown(griffe.Extension):
+        """Each object's docstring through :func:`markdown`, once the object tree is complete."""
+
+        def on_object(self, *, obj, loader, **kwargs) -> None:
+            if not obj.is_alias and obj.docstring is not None:
+                obj.docstring.value = markdown(obj.docstring.value)
