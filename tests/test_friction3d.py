@@ -77,7 +77,9 @@ def test_billiard_ball_path_until_rolling(system, case):
     res = simulate(system, 2.5 * t_roll, initial)
     assert res.reached_end
     sticks = [e for e in res.events if e.kind == "sticks"]
-    assert [e.name for e in res.events] == ["contact P sticks (rolling begins)"]
+    # the motion's events; "reverses": the slip direction written relative to a tangent once |v_s| < 1 mm/s
+    assert [e.name for e in res.events if e.kind != "reverses"] == ["contact P sticks (rolling begins)"]
+    assert len(res.events) == 2 and "passes 0.001 m/s" in res.events[0].detail
     assert abs(sticks[0].t - t_roll) < 1e-8 * t_roll
 
     def closed(t):
@@ -141,7 +143,7 @@ def test_rolling_ball_pulled_starts_to_slip_in_the_pull_direction():
     t_star = 7 * MU * M * G / (2 * k)
     res = simulate(s, 1.5 * t_star, {"x": 0.0, "y": 0.0})
     assert res.reached_end
-    assert [e.kind for e in res.events] == ["slips"]
+    assert [e.kind for e in res.events if e.kind != "reverses"] == ["slips"]
     assert abs(res.events[0].t - t_star) < 1e-9
     assert res.segments[0].mode == {"P": "stick"} and res.segments[1].mode == {"P": "slip"}
     for t in (0.5 * t_star, t_star, 1.2 * t_star, 1.5 * t_star):

@@ -11,13 +11,20 @@ relative to a reference tangent, with s1, s2 the slip velocity's components,
 is the same vector wherever the reference component is nonzero, and analytic through |v_s| = 0 when the
 slip dies out along a direction with a nonzero reference component (the motion beyond is the analytic
 continuation, so the integrator's error control and the dense output stay exact there).  So each
-slipping 3D contact splits a mode's regime into four numeric regimes (κ, σ), with two watches:
+slipping 3D contact splits a mode's regime into numeric regimes:
 
-* the reference component s_ref (s1 or s2) reaching zero with κ's condition s_ref² > s_other² holding:
-  |v_s| itself reaches zero, transversally in s_ref — the contact may stick (kind ``sticks``);
-* s1² − s2² reaching zero while |v_s| > 0: the slip direction turns past a diagonal of (t1, t2) and the
-  other component becomes the reference (kind ``reverses``: a change of bookkeeping, no change of the
-  motion, listed with the events).
+* fast (|v_s| > SLOW): û = v_s/|v_s| itself; one watch, |v_s|² − SLOW² reaching zero (bookkeeping);
+* slow (|v_s| < 2 SLOW), four regimes (κ, σ), with three watches:
+  - the reference component s_ref (s1 or s2) reaching zero with κ's condition s_ref² > s_other² holding:
+    |v_s| itself reaches zero, transversally in s_ref — the contact may stick (kind ``sticks``);
+  - s1² − s2² reaching zero while |v_s| > 0: the slip direction turns past a diagonal of (t1, t2) and the
+    other component becomes the reference;
+  - |v_s|² − (2 SLOW)² reaching zero: fast again.
+  The last two are changes of bookkeeping, not of the motion (kind ``reverses``, listed with the events).
+
+A slip that starts from sticking (``start_direction``, ``nudge``) begins against the friction the cone could
+no longer hold, with |v_s| set to 1e-10 of the state's size: the referenced form needs |v_s| > 0, and a slip
+that small is below the integrator's tolerances.
 
 Every regime's equations are the symbolic solution's with û1, û2 replaced: nothing is derived again.
 """
@@ -36,8 +43,14 @@ from ..regime import Condition, Deferred, LazyMap, Regime
 from .modes import SLIP
 from .rhs import compile_functions
 
-#: The suffix of the load name under which a contact's reference choice κ is a sign choice.
-DIRECTION = " slip direction"
+#: Suffixes of the load names under which a contact's bookkeeping choices are sign choices: κ (which
+#: tangent is the reference) and ζ (whether the slip is slow enough to need a reference at all).
+DIRECTION, SPEED = " slip direction", " slip speed"
+
+#: |v_s| (SI, m/s) below which the slip direction is written relative to a reference tangent (above
+#: 2·SLOW again the unit vector v_s/|v_s| itself): a fast-turning slip (a spinning top) is not followed by
+#: a change of reference at every diagonal, and a slip that dies out is seen in its reference component.
+SLOW = 1e-3
 
 
 def direction_load(contact: str) -> str:
@@ -45,8 +58,11 @@ def direction_load(contact: str) -> str:
 
 
 def contact_of(load: str) -> str | None:
-    """The contact whose reference choice ``load`` is (None: not a reference choice)."""
-    return load[:-len(DIRECTION)] if load.endswith(DIRECTION) else None
+    """The contact whose bookkeeping choice (κ or ζ) ``load`` is (None: not one)."""
+    for suffix in (DIRECTION, SPEED):
+        if load.endswith(suffix):
+            return load[:-len(suffix)]
+    return None
 
 
 def _slipping(setup) -> list:
@@ -55,7 +71,8 @@ def _slipping(setup) -> list:
 
 
 def expand(sol):
-    """``sol`` with each regime split into the numeric regimes (κ, σ) of its 3D slipping contacts."""
+    """``sol`` with each regime split into the numeric regimes of its 3D slipping contacts: û = v_s/|v_s| while
+    |v_s| > SLOW, and the four referenced forms (κ, σ) while |v_s| < 2 SLOW."""
     setup = sol.setup
     loads = _slipping(setup)
     if not loads:
@@ -66,15 +83,21 @@ def expand(sol):
         s1, s2 = (kin.simplify_expr(setup.scalar(s)) for s in ld.slip_components(kin))
         kappa, sigma = sp.Symbol(f"kappa_{ld.name}"), ld.sign_symbol
         u1, u2 = ld.direction()
-        options = []
+        zeta_slow, zeta_fast = sp.Symbol(f"zeta_{ld.name}"), sp.Symbol(f"zeta2_{ld.name}")
+        speed2 = s1**2 + s2**2
+        options = [({zeta_slow: 1}, {u1: s1 / sp.sqrt(speed2), u2: s2 / sp.sqrt(speed2)})]   # û = v_s/|v_s|
         for k, sg in product((1, -1), (1, -1)):
             d1, d2 = referenced_direction(s1, s2, 1 if k > 0 else 2, sg)
-            options.append(({kappa: k, sigma: sg}, {u1: d1, u2: d2}))
+            options.append(({zeta_fast: -1, kappa: k, sigma: sg}, {u1: d1, u2: d2}))
         per_contact.append(options)
         ref = (1 + kappa) / 2 * s1 + (1 - kappa) / 2 * s2
         choices.append(SignChoice(sigma, ref, f"slip velocity at {ld.name} along its reference tangent", ld.name))
         choices.append(SignChoice(kappa, s1**2 - s2**2, f"s1² − s2² at {ld.name} (which tangent is the reference)",
                                   direction_load(ld.name)))
+        choices.append(SignChoice(zeta_slow, speed2 - SLOW**2, f"|v_s|² − {SLOW:g}² at {ld.name} (a slow slip)",
+                                  ld.name + SPEED))
+        choices.append(SignChoice(zeta_fast, speed2 - (2 * SLOW)**2,
+                                  f"|v_s|² − {2 * SLOW:g}² at {ld.name} (no longer slow)", ld.name + SPEED))
     new_setup = replace(setup, sign_choices=choices)
     new_setup.held = getattr(setup, "held", ())
     regimes = []

@@ -17,7 +17,7 @@ from .impact import impact, mode_after
 from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable
 from .result import Event
 from .rhs import SimulationError
-from .slip3d import contact_of, nudge, start_direction
+from .slip3d import SLOW, SPEED, contact_of, nudge, start_direction
 
 
 def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
@@ -112,9 +112,15 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         forced = _current_signs(hyb, model, without=(w.name,) + ((turned,) if turned else ()))
         k = hyb.regime_at(mode, t_, y, p, forced)
         new_mode, nts = mode, []
-        detail = (f"the slip direction at {turned} turns past a diagonal of its tangent basis; its friction "
-                  "direction is written relative to the other tangent (the motion does not change)" if turned
-                  else f"{w.label}: the friction direction follows the new sign")
+        if turned and w.name.endswith(SPEED):
+            detail = (f"the slip speed at {turned} passes {SLOW:g} m/s: its friction direction is written "
+                      + ("relative to a reference tangent" if w.direction < 0 else "as v_s/|v_s| again")
+                      + " (the motion does not change)")
+        elif turned:
+            detail = (f"the slip direction at {turned} turns past a diagonal of its tangent basis; its friction "
+                      "direction is written relative to the other tangent (the motion does not change)")
+        else:
+            detail = f"{w.label}: the friction direction follows the new sign"
     y = np.array(y, dtype=float)
     y[:2 * n] = hyb.project_rates(new_mode, t_, y[:2 * n], p)
     y = nudge(hyb, new_mode, t_, y, p)        # a 3D slip that starts here (slip3d)
