@@ -107,3 +107,13 @@ def test_site_builds_strictly(tmp_path):
     assert (site / "gallery" / "ladder-fbd.svg").exists()
     api = (site / "api" / "model" / "index.html").read_text(encoding="utf-8")
     assert "rigidkin.model.system.System.solve" in api
+
+
+def test_readme_says_how_to_serve_the_site():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert "pip install -e '.[docs]' && mkdocs serve" in readme
+    import tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]
+    named = {d.split(">")[0].split("~")[0] for d in extras["docs"]}
+    assert {"mkdocs", "mkdocs-material", "mkdocstrings[python]"} <= named
