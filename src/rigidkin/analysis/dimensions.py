@@ -45,6 +45,9 @@ def symbol_dimensions(system, setup=None) -> dict:
         dims[p.symbol] = p.dimension
     for c in system.coordinate_info.values():
         dims[c.symbol] = c.dimension
+    for g in getattr(system, "speed_groups", {}).values():     # angular-velocity components as speeds
+        for w in g.speeds:
+            dims[w] = ONE / TIME
     if setup is not None:
         for row in setup.rows:
             d = TORQUE if row.kind == "torque" else FORCE

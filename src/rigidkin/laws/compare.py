@@ -142,7 +142,8 @@ class Sampler:
         with np.errstate(all="ignore"):
             Mf = np.array(fn(*[self._value(i, s) for s in syms]), dtype=complex)
         a = np.linalg.solve(Mf[:, :-1], Mf[:, -1])
-        return {sp.Symbol(f"_{q.func.__name__}_d2", real=True): complex(v) for q, v in zip(coords, a)}
+        # the plain symbol of q̈ (of ẇ for a quasi-coordinate, whose rate is a speed w)
+        return {algebra.plain_state(q.diff(t, 2))[0]: complex(v) for q, v in zip(coords, a)}
 
     def residual(self, expr, regime, coords, i: int, extra: dict | None = None) -> tuple[complex, float]:
         """(value, scale) of ``expr`` with the regime's accelerations (and ``extra`` plain values) at point i."""

@@ -42,6 +42,10 @@ def _auxiliary(setup: ModeSetup, model) -> list:
 
 def equations(setup: ModeSetup) -> list[BalanceEquation]:
     """q̇_i = u_i, and u̇_i from Kane's equations F_r + F_r* = 0 for the independent speeds."""
+    if getattr(setup.system, "speed_groups", None):
+        raise NotApplicable("the adapter to sympy's KanesMethod takes u = q̇, and this system's speeds are "
+                            "angular-velocity components (q̇ = W(q) u, model/speeds.py).", where=setup.system.name,
+                            hint="Newton–Euler resolved along the body axes gives Kane's equations in those speeds.")
     kin, tr = setup.kin, setup.trace
     model = build(setup, "forces", METHOD, evidence=True)
     qs = list(setup.system.coordinates)

@@ -26,6 +26,12 @@ METHOD = "lagrange"
 
 def equations(setup: ModeSetup) -> list[BalanceEquation]:
     """q̈_i = f_i for each independent coordinate, from LagrangesMethod with multipliers."""
+    if getattr(setup.system, "speed_groups", None):
+        from . import NotApplicable
+
+        raise NotApplicable("Lagrange's equations hold for coordinates, and this system's speeds are angular-velocity "
+                            "components (quasi-coordinates, model/speeds.py), which are no coordinate's rate.",
+                            where=setup.system.name, hint="Newton–Euler and the laws about a point apply.")
     kin, tr = setup.kin, setup.trace
     model = build(setup, "potential", METHOD)
     qs = list(setup.system.coordinates)
