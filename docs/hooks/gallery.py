@@ -32,7 +32,7 @@ T_END = 3.0                 # seconds simulated: what `rigidkin report NAME --si
 POINTS = 400                # samples of the simulation figure
 TIME_LIMIT = 300            # seconds for one example's drawings
 WORKERS = max(1, min(2, os.cpu_count() or 1))
-FIGURES = ("fbd.svg", "sim.svg")
+MAX_EVENTS = 20            # rows of a page's events table
 
 log = logging.getLogger("mkdocs.plugins.gallery")
 
@@ -118,13 +118,16 @@ def _projected(module, system, folder: Path, meta: dict) -> str:
 # the cache and the processes
 
 def source_key() -> str:
-    """A hash of everything the drawings depend on: the package's source, this file, the libraries' versions."""
+    """A hash of everything the drawings depend on: the package's source, the drawing functions of this file and
+    their settings, the libraries' versions (editing a page's layout here redraws nothing)."""
+    import inspect
     from importlib.metadata import version
 
     h = hashlib.sha256()
-    for p in sorted([*SOURCE.rglob("*.py"), *SOURCE.rglob("*.toml"), Path(__file__)]):
+    for p in sorted([*SOURCE.rglob("*.py"), *SOURCE.rglob("*.toml")]):
         h.update(str(p.relative_to(ROOT)).encode())
         h.update(p.read_bytes())
+    h.update(f"{inspect.getsource(draw)}{inspect.getsource(_projected)}{T_END}/{POINTS}".encode())
     for lib in ("sympy", "numpy", "scipy", "matplotlib"):
         h.update(f"{lib}={version(lib)}".encode())
     return h.hexdigest()[:16]
@@ -132,6 +135,17 @@ def source_key() -> str:
 
 def cache_folder() -> Path:
     return Path(tempfile.gettempdir()) / f"rigidkin-docs-gallery-{os.getuid() if hasattr(os, 'getuid') else 0}"
+
+
+def prune(keep: Path, count: int = 3) -> None:
+    """Remove the cache's older drawings (other versions of the package), keeping ``count`` folders."""
+    import shutil
+
+    if not keep.parent.is_dir():
+        return
+    others = sorted((p for p in keep.parent.iterdir() if p.is_dir() and p != keep), key=lambda p: p.stat().st_mtime)
+    for old in others[: max(0, len(others) - (count - 1))]:
+        shutil.rmtree(old, ignore_errors=True)
 
 
 def _drawn(name: str, folder: Path) -> dict | None:
@@ -190,7 +204,12 @@ def page(meta: dict) -> str:
         out += ["## Simulation" if meta.get("derivation") else "## Linearised motion", "",
                 f"![Simulation of {name}]({name}-sim.svg)", "", f"*{meta['figures']['sim.svg']}.*", ""]
     if meta.get("events"):
-        out += ["| event | t [s] |", "| --- | --- |"] + [f"| {e} | {t:.6g} |" for t, e in meta["events"]] + [""]
+        shown = meta["events"][:MAX_EVENTS]
+        out += ["| event | t [s] |", "| --- | --- |"]
+        out += [f"| {e.replace('|', '&#124;')} | {t:.6g} |" for t, e in shown]
+        if len(meta["events"]) > MAX_EVENTS:
+            out.append(f"| … and {len(meta['events']) - MAX_EVENTS} more | |")
+        out.append("")
     if meta.get("status"):
         out += [f"Simulation {meta['status']}", ""]
     lang = "toml" if meta["form"] == "toml" else "python"
@@ -227,6 +246,7 @@ def on_files(files, config):
     start = time.perf_counter()
     _DRAWN.clear()
     _DRAWN.update(draw_all(names, folder))
+    prune(folder)
     log.info("gallery: %d examples drawn in %.1f s (%d from the cache %s)", len(names), time.perf_counter() - start,
              cached, folder)
     for name, meta in _DRAWN.items():
