@@ -129,6 +129,9 @@ def test_billiard_ball_equations_with_the_slip_direction(system):
     from rigidkin.report.text import solution_text
 
     shown = solution_text(sol)
+    rolling = system.solve(mode={"P": "stick"}, integrate=False)       # rolling: within the friction cone
+    cone = [c for c in rolling.regime(0).validity if "within the cone" in c.label]
+    assert len(cone) == 1 and sp.simplify(cone[0].expr.subs({sp.Symbol("N"): m * g}) - (mu * m * g) ** 2) == 0
     assert "Slip direction (while the slip speed |v_s| > 0" in shown and "û_P1 = s_P1/" in shown
 
 
