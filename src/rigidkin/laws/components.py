@@ -20,10 +20,22 @@ def in_frame(v: Vector, frame) -> tuple:
     if not isinstance(v, Vector):
         return tuple(out)
     for m, fr in v.args:
-        c = m if fr == frame else frame.dcm(fr) * m
+        c = list(m)
+        if fr != frame:
+            d = _dcm(frame, fr)
+            c = [d[i][0] * c[0] + d[i][1] * c[1] + d[i][2] * c[2] for i in range(3)]
         for i in range(3):
             out[i] += c[i]
     return tuple(out)
+
+
+def _dcm(frame, other) -> list:
+    """frame.dcm(other) as nested lists (kept on the frame: sympy's Matrix indexing is slow)."""
+    cache = frame.__dict__.setdefault("_rigidkin_dcm_rows", {})
+    hit = cache.get(other)
+    if hit is None:
+        hit = cache[other] = frame.dcm(other).tolist()
+    return hit
 
 
 def dot(a, b) -> sp.Expr:
