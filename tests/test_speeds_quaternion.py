@@ -219,3 +219,70 @@ def test_bicycle_eigenvalues_with_angular_speeds():
     for v in TABLE2:
         A_ = model.state_matrix(q, [0.0, 0.0, -v / rR], (phi, delta), (wx, delta))
         np.testing.assert_allclose(_sorted(np.linalg.eigvals(A_)), _expected(v), rtol=0, atol=1e-10)
+
+
+# the whole chain from a problem file: solve (EOM in ẇ), check, simulate (q, u) -------------------------------
+TOP_FILE = """
+title = "Sleeping top"
+[parameters]
+m = { unit = "kg", value = 0.1 }
+g = { unit = "m/s^2", value = 9.81 }
+l = { unit = "m", value = "3 cm" }
+I1 = { unit = "kg*m^2", value = 1.2e-4, description = "transverse moment about the tip" }
+I3 = { unit = "kg*m^2", value = 4e-5 }
+[frames.B]
+quaternion = ["e0", "e1", "e2", "e3"]                 # Euler parameters, scalar first; they start at (1, 0, 0, 0)
+speeds = ["w1", "w2", "w3"]                           # angular-velocity components along b1, b2, b3
+rates = ["1 mrad/s", 0, 150]                          # their initial values
+basis = ["b1", "b2", "b3"]
+[points]
+G = { offset = "l*b3" }
+[bodies]
+top = { shape = "inertia", mass = "m", Ixx = "I1 - m*l**2", Iyy = "I1 - m*l**2", Izz = "I3", frame = "B", at = "G" }
+[constraints]
+O = { type = "pin", point = "O", body_a = "top" }
+[loads]
+gravity = { type = "gravity", g = "g", direction = "-Ez" }
+"""
+
+
+@pytest.mark.slow
+def test_sleeping_top_file_solve_and_simulate(tmp_path):
+    """From the file: Euler's equations in ẇ (against the closed form with the gravity moment
+    m g l (b2·Ez) about b1, written here), the kinematic equations ė = ½ Q(e) w in the trace, every
+    law that applies agreeing, and the simulation in (q, u) from upright: the top sleeps at 150 rad/s."""
+    from rigidkin.io.problem import load_problem
+    from rigidkin.numeric import simulate
+
+    path = tmp_path / "top.toml"
+    path.write_text(TOP_FILE)
+    s, _ = load_problem(path)
+    sol = s.solve()
+    e = s.coordinates[:4]
+    w = speeds_of(s).speeds
+    P = {str(k): v for k, v in s.parameters.items()}
+    rng = np.random.default_rng(3)
+    ev = rng.normal(size=4)
+    ev /= np.linalg.norm(ev)
+    wv = rng.normal(size=3)
+    vals = {**dict(zip(e, ev)), **dict(zip(w, wv)), **{P[k]: v for k, v in
+                                                      dict(m=0.1, g=9.81, l=0.03, I1=1.2e-4, I3=4e-5).items()}}
+    acc = {str(k): float(sp.sympify(v).xreplace(vals)) for k, v in sol.accelerations.items()}
+    R = dcm(ev)
+    mgl, I1, I3 = 0.1 * 9.81 * 0.03, 1.2e-4, 4e-5
+    assert acc["w1_int(t)"] == pytest.approx(((I1 - I3) * wv[1] * wv[2] + mgl * R[1, 2]) / I1, rel=1e-12)
+    assert acc["w2_int(t)"] == pytest.approx(((I3 - I1) * wv[0] * wv[2] - mgl * R[0, 2]) / I1, rel=1e-12)
+    assert acc["w3_int(t)"] == 0
+    steps = [s_ for s_ in sol.trace.steps if "Kinematic differential equations" in s_.title]
+    assert steps and "W" in str(steps[0].equations)
+    assert all(v.status in ("agrees", "does not apply") for v in sol.check().verdicts)
+    res = simulate(s, 1.0, rtol=1e-10, atol=1e-12)
+    assert res.reached_end
+    ys = np.asarray(res.y).T
+    lay = res.layout
+    E = ys[[lay.index(n) for n in ("e0", "e1", "e2", "e3")]]
+    assert lay.index("w3") == lay.index("dot(w3_int)")
+    tilt = np.arccos(np.clip(1 - 2 * (E[1] ** 2 + E[2] ** 2) / np.sum(E**2, axis=0), -1, 1))
+    assert tilt.max() < 1e-3
+    assert np.abs(np.sum(E**2, axis=0) - 1).max() < 1e-8
+    assert abs(res.energy_drift) < 1e-8

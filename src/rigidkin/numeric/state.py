@@ -38,13 +38,15 @@ class StateLayout:
     coordinates: tuple                  # q(t)
     parameters: tuple[str, ...]         # parameter names, in declaration order
     parameter_symbols: tuple
+    speeds: tuple[str, ...] = ()       # per coordinate: the speed its rate is (a quasi-coordinate's w), or ""
 
     @classmethod
     def of(cls, system) -> StateLayout:
         info = system.coordinate_info
         params = system.parameter_info
         return cls(tuple(info), tuple(c.symbol for c in info.values()), tuple(params),
-                   tuple(p.symbol for p in params.values()))
+                   tuple(p.symbol for p in params.values()),
+                   tuple(c.extra.get("speed", "") if c.extra else "" for c in info.values()))
 
     @property
     def n(self) -> int:
@@ -52,8 +54,9 @@ class StateLayout:
 
     @property
     def labels(self) -> tuple[str, ...]:
-        """``theta, x, dot(theta), dot(x)``: the names of the 2n state slots."""
-        return self.names + tuple(rate_name(n) for n in self.names)
+        """``theta, x, dot(theta), dot(x)``: the names of the 2n state slots (a speed by its own name)."""
+        sp_ = self.speeds or ("",) * self.n
+        return self.names + tuple(w or rate_name(n) for n, w in zip(self.names, sp_))
 
     def plain_symbols(self) -> tuple[list, list]:
         """Plain symbols for q and q̇ (``q_theta``, ``u_theta``), in layout order."""
@@ -75,6 +78,8 @@ class StateLayout:
 
     def index(self, name: str) -> int:
         """Slot of ``theta`` or ``dot(theta)`` in y."""
+        if self.speeds and name.strip() and name.strip() in self.speeds:
+            return self.n + self.speeds.index(name.strip())          # a speed w: the rate of its quasi-coordinate
         m = _DOT.match(name)
         base = m.group(1) if m else name.strip()
         if base not in self.names:
