@@ -146,7 +146,7 @@ def _child(kind, n, out):
 
 
 def measure_child(kind, n, limit):
-    ctx = mp.get_context("fork")
+    ctx = mp.get_context("spawn")          # a fresh interpreter: nothing inherited from the parent's threads
     out = ctx.Queue()
     proc = ctx.Process(target=_child, args=(kind, n, out))
     proc.start()
@@ -155,8 +155,11 @@ def measure_child(kind, n, limit):
         proc.terminate()
         proc.join()
         return None
-    res = out.get() if not out.empty() else None
-    return res if isinstance(res, tuple) else None
+    try:
+        res = out.get(timeout=5)
+    except Exception:                      # the child died without a word
+        return "no result"
+    return res
 
 
 def main(argv=None):
@@ -174,7 +177,10 @@ def main(argv=None):
         row = {"n": n, "build": build, "aba": t_aba, "numpy": t_np, "pin": t_pin, "err": err}
         for kind in ("symbolic", "projected"):
             res = measure_child(kind, n, args.limit)
-            if res is not None:
+            if isinstance(res, str):
+                row[kind] = res
+                print(f"  {kind} route at n = {n}: {res}", flush=True)
+            elif res is not None:
                 e2 = float(np.max(np.abs(relative(np.array(res[2])) - acc_pin)) / max(1.0, np.max(np.abs(acc_pin))))
                 row[kind] = (res[0], res[1], e2)
         rows.append(row)
@@ -188,7 +194,8 @@ def main(argv=None):
         cells = []
         for kind in ("symbolic", "projected"):
             v = r.get(kind)
-            cells.append(f"{v[1] * us:10.1f} ({v[0]:7.1f})" if v else f"> {args.limit:.0f} s build")
+            cells.append("error" if isinstance(v, str) else
+                         f"{v[1] * us:10.1f} ({v[0]:7.1f})" if v else f"> {args.limit:.0f} s build")
         print(f"{r['n']:>3} | {r['aba'] * us:16.1f} | {r['numpy'] * us:10.0f} | {r['pin'] * us:12.2f} | "
               f"{r['aba'] / r['pin']:6.1f} | "
               f"{r['err']:8.1e} | {cells[0]:>22} | {cells[1]:>23}")
@@ -198,7 +205,7 @@ def main(argv=None):
     print(f"  rigidkin O(n) RHS  ×{b['aba'] / a['aba']:.1f} (C step); ×{b['numpy'] / a['numpy']:.1f} (numpy step)")
     print(f"  Pinocchio ABA      ×{b['pin'] / a['pin']:.1f}")
     for kind in ("symbolic", "projected"):
-        done = [r for r in rows if r.get(kind)]
+        done = [r for r in rows if isinstance(r.get(kind), tuple)]
         if len(done) >= 2:
             print(f"  {kind:<18} ×{done[-1][kind][1] / done[0][kind][1]:.1f} (n = {done[0]['n']} to "
                   f"{done[-1]['n']}, where it finished)")
