@@ -1,6 +1,15 @@
 """Derivation speed: every bundled example, and a chain of n uniform rods against KanesMethod.
 
     python benchmarks/derivation.py [--repeats 3] [--max-n 10] [--solve-limit 150]
+    python benchmarks/derivation.py --ratios [--repeats 3]      # the issue-16 table (a few minutes)
+
+``--ratios``: rigidkin / KanesMethod CPU time, same process, cold caches, for the chain at n = 6, 10
+and 20, every 3D example and the Whipple bicycle.  rigidkin: ``System.solve()`` and M, f as derived
+(``regime.raw_mass_matrix``, ``raw_forcing``; reactions, q̈ and the readable forms are made when first
+read).  KanesMethod: the chain built with sympy.physics.mechanics alone (``models.kane_chain``); an
+example's model handed over from rigidkin's mode setup (``kane_on_model``: the setup is timed with it,
+as the model must come from somewhere — the column "Kane eqs" times ``kanes_equations`` alone); the
+bicycle: sympy's own test_kane3 model (``bicycle.sympy_bicycle``) against ``examples.bicycle.projected()``.
 
 Examples: ``rigidkin.examples.build(name).solve()`` on a fresh system each run (the solution is
 cached per system), against sympy.physics.mechanics KanesMethod on the same model (rigidkin's
@@ -45,6 +54,95 @@ def kane_on_model(name: str):
     return km
 
 
+#: The bundled examples that are three-dimensional (their ratio is part of the issue-16 table).
+EXAMPLES_3D = ("gyroscope", "heavy-top", "rolling-disk", "sphere-on-sphere", "torque-free")
+
+
+def rigidkin_solve(system):
+    """System.solve() and the mass matrix and forcing as derived (what the benchmark times)."""
+    sol = system.solve()
+    for r in sol.regimes:
+        _ = r.raw_mass_matrix, r.raw_forcing
+    return sol
+
+
+def kane_parts(name: str) -> tuple[float, float]:
+    """(model from rigidkin's setup + KanesMethod, KanesMethod alone) CPU seconds for an example."""
+    import time
+
+    from sympy.physics.mechanics import KanesMethod
+
+    t0 = time.process_time()
+    captured = {}
+    real = KanesMethod.kanes_equations
+
+    def timed(self, *a, **k):
+        t1 = time.process_time()
+        out = real(self, *a, **k)
+        captured["eqs"] = time.process_time() - t1
+        return out
+
+    KanesMethod.kanes_equations = timed
+    try:
+        kane_on_model(name)
+    finally:
+        KanesMethod.kanes_equations = real
+    return time.process_time() - t0, captured["eqs"]
+
+
+def ratio_table(repeats: int) -> str:
+    import statistics
+    import time
+
+    from common import cold_caches
+
+    from rigidkin import examples
+    from rigidkin.examples import chain
+
+    def cpu(fn, reps):
+        times = []
+        for _ in range(reps):
+            cold_caches()
+            t0 = time.process_time()
+            fn()
+            times.append(time.process_time() - t0)
+        return statistics.median(times)
+
+    rigidkin_solve(examples.build("ladder"))      # imports and lazy module loads, untimed
+    kane_parts("ladder")
+    rows = []
+    for n in (6, 10, 20):
+        reps = repeats if n <= 10 else 1
+        t_rk = cpu(lambda n=n: rigidkin_solve(chain.build(n)), reps)
+        t_km = cpu(lambda n=n: kane_chain(n), reps)
+        rows.append([f"chain n = {n}", t_rk, t_km, None, t_rk / t_km])
+        print(f"  chain {n} done", flush=True)
+    for name in EXAMPLES_3D:
+        t_rk = cpu(lambda name=name: rigidkin_solve(examples.build(name)), repeats)
+        parts = []
+        for _ in range(repeats):
+            cold_caches()
+            parts.append(kane_parts(name))
+        t_km = statistics.median(p[0] for p in parts)
+        t_eq = statistics.median(p[1] for p in parts)
+        rows.append([name, t_rk, t_km, t_eq, t_rk / t_km])
+        print(f"  {name} done", flush=True)
+    import bicycle as bike
+
+    from rigidkin.examples import bicycle
+
+    t_rk = cpu(bicycle.projected, 1)
+    t_km = cpu(bike.sympy_bicycle, 1)
+    rows.append(["Whipple bicycle", t_rk, t_km, None, t_rk / t_km])
+    return table("rigidkin / KanesMethod, derivation (CPU s, same process, cold caches)",
+                 ["model", "rigidkin", "KanesMethod", "Kane eqs", "ratio"], rows,
+                 "rigidkin: System.solve() with M and f as derived (reactions, q̈ and readable forms on demand); "
+                 "bicycle: examples.bicycle.projected().\nKanesMethod: chain built with sympy.physics.mechanics "
+                 "alone; examples: model from rigidkin's mode setup + KanesMethod (setup included; 'Kane eqs' = "
+                 "kanes_equations alone); bicycle: sympy's test_kane3 model.\nratio = rigidkin / KanesMethod "
+                 f"(median of {repeats} runs; n = 20 and the bicycle one run).")
+
+
 def examples_table(repeats: int, limit: float) -> str:
     from rigidkin import examples
 
@@ -53,7 +151,8 @@ def examples_table(repeats: int, limit: float) -> str:
         if name == "chain":
             continue
         try:
-            t_rk, _ = median_time(lambda name=name: examples.build(name).solve(), repeats, limit, cold=True)
+            t_rk, _ = median_time(lambda name=name: rigidkin_solve(examples.build(name)), repeats, limit,
+                                   cold=True)
         except TimeLimit:
             rows.append([name, f"> {limit:.0f}", None, None, "no"])
             continue
@@ -87,7 +186,7 @@ def chain_table(ns, repeats: int, solve_limit: float, eq_limit: float) -> str:
         row = [n, t_km, ops_km]
         if solve_ok:
             try:
-                t_rk, sol = median_time(lambda n=n: chain.build(n).solve(), reps if n <= 2 else 1, solve_limit,
+                t_rk, sol = median_time(lambda n=n: rigidkin_solve(chain.build(n)), reps if n <= 2 else 1, solve_limit,
                                         cold=True)
                 with time_limit(solve_limit):
                     ops_rk = ops_after_cse(list(sol.mass_matrix) + list(sol.forcing))
@@ -133,8 +232,12 @@ def main(argv=None) -> None:
     ap.add_argument("--eq-limit", type=float, default=120.0)
     ap.add_argument("--limit", type=float, default=120.0, help="seconds for one example")
     ap.add_argument("--skip-examples", action="store_true")
+    ap.add_argument("--ratios", action="store_true", help="only the issue-16 ratio table")
     a = ap.parse_args(argv)
     print(f"# Derivation speed ({machine()})", flush=True)
+    if a.ratios:
+        print(ratio_table(a.repeats), flush=True)
+        return
     if not a.skip_examples:
         print(examples_table(a.repeats, a.limit), flush=True)
     ns = [n for n in (1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20) if n <= a.max_n]

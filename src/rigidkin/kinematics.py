@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
-from . import algebra
+from . import algebra, vectorops
 from .errors import ConstraintError
 from .model.speeds import speeds_of
 from .trace import Trace
@@ -157,12 +157,12 @@ class Kinematics:
     def velocity(self, point) -> Vector:
         """v_P = F d/dt r_OP (transport theorem for components in rotating bases)."""
         if point not in self._vel:
-            self._vel[point] = self.position(point).dt(self.F.ref)
+            self._vel[point] = vectorops.dt(self.position(point), self.F.ref)
         return self._vel[point]
 
     def acceleration(self, point) -> Vector:
         if point not in self._acc:
-            self._acc[point] = self.velocity(point).dt(self.F.ref)
+            self._acc[point] = vectorops.dt(self.velocity(point), self.F.ref)
         return self._acc[point]
 
     def omega(self, frame) -> Vector:
@@ -180,7 +180,7 @@ class Kinematics:
         if body is None:
             return Vector(0)
         G = body.centre
-        return self.velocity(G) + self.omega_of(body).cross(location - self.position(G))
+        return self.velocity(G) + vectorops.cross(self.omega_of(body), location - self.position(G))
 
     def material_acceleration(self, body, location: Vector) -> Vector:
         """a_P = a_G + α × r_GP + ω × (ω × r_GP) for the material point of ``body`` at ``location``."""
@@ -189,7 +189,8 @@ class Kinematics:
         G = body.centre
         r = location - self.position(G)
         w = self.omega_of(body)
-        return self.acceleration(G) + self.alpha(body.frame).cross(r) + w.cross(w.cross(r))
+        cross = vectorops.cross
+        return self.acceleration(G) + cross(self.alpha(body.frame), r) + cross(w, cross(w, r))
 
 
 # ---------------------------------------------------------------------------------------------------

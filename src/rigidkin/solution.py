@@ -336,7 +336,7 @@ def _projected_rows(setup, balances, sign_map):
     frame when it is written in more than two); the force (or moment) is resolved once into each of those
     frames, and each dot product is a sum of products.
     """
-    from .laws.components import dot, in_frame
+    from .vectorops import dot, in_frame
 
     rates = [q.diff(t) for q in setup.reduction.independent]
     Fr = setup.kin.F.ref

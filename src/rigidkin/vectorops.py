@@ -1,17 +1,20 @@
-"""Vectors as their three components in one frame: expressed once, then dotted as sums of products.
+"""Vector algebra on components: each vector resolved once into a frame, then plain sums of products.
 
 ``Vector.dot`` turns every pair of frame terms into a direction-cosine product each time it is called;
 resolving a vector along three basis vectors, or dotting it with the partial velocities of every
 independent rate, repeats that work.  Here each frame term is turned into the target frame once
 (``frame.dcm(B) · m``, the same products ``Vector.dot`` forms), and the scalars follow by plain sums.
+``cross`` and ``dt`` give the same expressions as sympy's ``Vector.cross`` and ``Vector.dt`` (the
+transport theorem term by term), formed without the Vector and Matrix arithmetic in between.
 """
 
 from __future__ import annotations
 
 import sympy as sp
-from sympy.physics.vector import Vector
+from sympy.physics.vector import Vector, dynamicsymbols
 
 _ZERO = sp.Integer(0)
+_t = dynamicsymbols._t
 
 
 def in_frame(v: Vector, frame) -> tuple:
@@ -41,3 +44,27 @@ def _dcm(frame, other) -> list:
 def dot(a, b) -> sp.Expr:
     """a · b for two component triples in the same frame (zero terms skipped)."""
     return sp.Add(*[x * y for x, y in zip(a, b) if x != 0 and y != 0])
+
+
+def cross(a: Vector, b: Vector) -> Vector:
+    """a × b, written in the frames of ``b`` (as ``Vector.cross`` writes it)."""
+    out = []
+    for m, frame in getattr(b, "args", ()):
+        s = in_frame(a, frame)
+        o = list(m)
+        out.append((sp.Matrix([s[1] * o[2] - s[2] * o[1], s[2] * o[0] - s[0] * o[2], s[0] * o[1] - s[1] * o[0]]),
+                    frame))
+    return Vector(out)
+
+
+def dt(v: Vector, frame) -> Vector:
+    """The rate of ``v`` in ``frame``: each term's components differentiated, plus ω × term for a term
+    written in a frame that turns (the transport theorem, as ``Vector.dt`` applies it)."""
+    out = []
+    for m, fr in getattr(v, "args", ()):
+        dm = m.applyfunc(lambda e: e.diff(_t))
+        if fr == frame:
+            out.append((dm, frame))
+        else:
+            out += (Vector([(dm, fr)]) + cross(fr.ang_vel_in(frame), Vector([(m, fr)]))).args
+    return Vector(out)

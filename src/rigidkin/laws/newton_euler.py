@@ -18,7 +18,7 @@ from sympy.physics.vector import Vector, dynamicsymbols
 from ..errors import ModelError
 from ..mode import ModeSetup
 from ..trace import LazyEquations
-from .components import in_frame
+from ..vectorops import cross, dt, in_frame
 
 t = dynamicsymbols._t
 
@@ -66,7 +66,7 @@ def body_loads(setup: ModeSetup, body) -> tuple[Vector, Vector, list]:
         else:
             loc = app.location if app.location is not None else kin.position(app.point)
             F += app.vector
-            M += (loc - rG).cross(app.vector)
+            M += cross(loc - rG, app.vector)
     return F, M, apps
 
 
@@ -83,7 +83,7 @@ def body_balances(setup: ModeSetup) -> list[BodyBalance]:
         G = body.centre
         w = kin.omega_of(body)
         H = body.inertia.dot(w) if not body.is_massless else Vector(0)
-        dH = H.dt(kin.F.ref) if Vector(0) != H else Vector(0)
+        dH = dt(H, kin.F.ref) if Vector(0) != H else Vector(0)
         a = kin.acceleration(G) if not body.is_massless else Vector(0)
         out.append(BodyBalance(body, _ind(setup, F), _ind(setup, M), _ind(setup, body.mass * a),
                                _ind(setup, dH), _ind(setup, w), _ind(setup, kin.velocity(G))))
