@@ -215,3 +215,12 @@ def test_a_changed_output_is_refused(cache, monkeypatch, capsys):
     loads = _loads(monkeypatch)
     text = _solve(capsys)
     assert "asin(2/3)" not in text.replace(" ", "") and loads == []    # derived again, from the kept derivation
+
+
+def test_a_report_after_a_check_reads_as_a_fresh_one(cache, tmp_path, capsys):
+    # check records its verdicts in the solution's trace; the cache keeps the derivation without them
+    assert main(["check", "ladder", "--laws", "lagrange", "--no-dimensions"]) == 0
+    cached, fresh = tmp_path / "cached.html", tmp_path / "fresh.html"
+    assert main(["report", "ladder", "-o", str(cached), "--no-figures"]) == 0
+    assert main(["report", "ladder", "-o", str(fresh), "--no-figures", "--no-cache"]) == 0
+    assert cached.read_bytes() == fresh.read_bytes()

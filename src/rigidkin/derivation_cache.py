@@ -276,6 +276,7 @@ def dumps(entry: dict) -> bytes | None:
         return None
 
     from .io.spec import ProblemSpec
+    from .trace import Trace
 
     system = entry["system"]
 
@@ -289,6 +290,10 @@ def dumps(entry: dict) -> bytes | None:
                 state = dict(obj.__dict__)
                 state["data"] = None
                 return copyreg.__newobj__, (ProblemSpec,), state
+            if type(obj) is Trace and any(st.section == "Checks" for st in obj.steps):
+                state = dict(obj.__dict__)          # a cross-check's record: made again when one is asked for
+                state["steps"] = [st for st in obj.steps if st.section != "Checks"]
+                return copyreg.__newobj__, (Trace,), state
             if type(obj) is _CACHED and "<locals>" in getattr(obj, "__qualname__", ""):
                 return functools.cache, (obj.__wrapped__,)        # a memoized closure: its code, not its memo
             return super().reducer_override(obj)
