@@ -220,10 +220,13 @@ def page(meta: dict) -> str:
 
 def index_table(drawn: dict[str, dict]) -> str:
     """The gallery's table of contents: every example with its title and what its page shows."""
-    rows = ["| example | title | figures |", "| --- | --- | --- |"]
+    rows = ["| example | title | shows | |", "| --- | --- | --- | --- |"]
     for name, meta in drawn.items():
         shown = ", ".join(meta.get("shows", [])) or "(could not be drawn)"
-        rows.append(f"| [`{name}`]({name}.md) | {meta.get('title', name)} | {shown} |")
+        first = next(iter(meta.get("figures", {})), None)
+        thumb = (f'[![{name}]({name}-{first.removesuffix(".svg")}.svg){{ width="150" loading="lazy" }}]({name}.md)'
+                 if first else "")
+        rows.append(f"| [`{name}`]({name}.md) | {meta.get('title', name)} | {shown} | {thumb} |")
     return "\n".join(rows)
 
 
