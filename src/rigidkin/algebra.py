@@ -140,25 +140,41 @@ def evaluate(exprs, values: Mapping) -> list[complex]:
     return [ev(sp.sympify(e)) for e in exprs]
 
 
-def _clearly_nonzero(expr: sp.Basic, seed: int) -> bool:
-    """Far from zero at a random state in machine arithmetic (beyond any rounding of its terms): the
-    30-digit evaluation that decides small values is not needed."""
-    vals = state_point([expr], random.Random(seed + 7919), 0.53)
-    terms = sp.Add.make_args(expr)
-    v = evaluate(list(terms), vals)
-    total = abs(sum(v))
-    return total == total and total > 1e-6 and total > 1e-9 * max(abs(x) for x in v)
+def _machine_verdict(expr: sp.Basic, trials: int, seed: int, tol: float) -> bool | None:
+    """``is_zero`` in machine arithmetic at the same random states: True when every value is far below
+    ``tol``, False when one is far from zero beyond any rounding of its terms, None when a value is
+    in between (then the 30-digit evaluation decides)."""
+    rng = random.Random(seed)
+    terms = list(sp.Add.make_args(expr))
+    zero = True
+    for _ in range(trials):
+        vals = state_point([expr], rng, 0.0)
+        vals[t] = rng.uniform(0.1, 1.0)          # the draws numeric_value makes
+        v = evaluate(terms, vals)
+        total = abs(sum(v))
+        if total != total:
+            return None
+        if total < 1e-3 * tol:
+            continue
+        zero = False
+        if total > 1e-6 and total > 1e-9 * max(abs(x) for x in v):
+            return False
+    return True if zero else None
 
 
 def is_zero(expr: sp.Basic, trials: int = 4, seed: int = 1, tol: float = 1e-10) -> bool:
-    """True when ``expr`` vanishes identically (random evaluation, scaled tolerance)."""
+    """True when ``expr`` vanishes identically (random evaluation, scaled tolerance).
+
+    Machine arithmetic decides where it can (a value far from zero, or every value far below the
+    tolerance); a value in between is evaluated to 30 digits."""
     expr = sp.sympify(expr)
     if expr == 0:
         return True
     if expr.is_number:
         return abs(complex(expr.evalf())) < tol
-    if _clearly_nonzero(expr, seed):
-        return False
+    verdict = _machine_verdict(expr, trials, seed, tol)
+    if verdict is not None:
+        return verdict
     rng = random.Random(seed)
     for _ in range(trials):
         try:
