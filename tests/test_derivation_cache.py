@@ -217,6 +217,7 @@ def test_a_changed_output_is_refused(cache, monkeypatch, capsys):
     assert "asin(2/3)" not in text.replace(" ", "") and loads == []    # derived again, from the kept derivation
 
 
+@pytest.mark.slow
 def test_a_report_after_a_check_reads_as_a_fresh_one(cache, tmp_path, capsys):
     # check records its verdicts in the solution's trace; the cache keeps the derivation without them
     assert main(["check", "ladder", "--laws", "lagrange", "--no-dimensions"]) == 0
