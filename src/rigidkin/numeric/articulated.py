@@ -129,9 +129,7 @@ class ArticulatedModel:
         self._E = E
         self._cache: dict = {}
         self.conservative = all(kind == "torsional spring" for *_, kind in tr.applications)
-        from ..kinematics import Kinematics
-
-        planar = Kinematics(system).planar
+        planar = _planar(tr)
         self.reaction_names = []
         self._react = []                  # (joint, sign, frame comps 3×k)
         for j, jt in enumerate(tr.joints):
@@ -377,7 +375,16 @@ class ArticulatedModel:
 
     def reactions(self, t_, y, p) -> dict:
         """The pin reactions (force on body_a, along the pin's basis) from the forces the joints transmit."""
-        _, (IA, pA, A, _), _, (num, W, _, _, _) = self.dynamics(t_, y, p)
+        return self.sample(t_, y, p)[0]
+
+    def energy(self, t_, y, p) -> tuple[float, float]:
+        """(T, U): kinetic energy and the potential of gravity and of the torsional springs."""
+        num, W, rG, _, _, _, _, Vb, loads = self._kinematics(t_, y, p)
+        return self._energy(num, W, rG, Vb, loads)
+
+    def sample(self, t_, y, p) -> tuple[dict, float, float]:
+        """(pin reactions, T, U) at the state from one evaluation of the algorithm."""
+        _, (IA, pA, A, _), _, (num, W, rG, Vb, loads) = self.dynamics(t_, y, p)
         out = {}
         names = iter(self.reaction_names)
         tr = self.tree
@@ -392,16 +399,30 @@ class ArticulatedModel:
             comp = Wf.T @ force
             for i in range(k):
                 out[next(names)] = float(comp[i])
-        return out
+        return (out, *self._energy(num, W, rG, Vb, loads))
 
-    def energy(self, t_, y, p) -> tuple[float, float]:
-        """(T, U): kinetic energy and the potential of gravity and of the torsional springs."""
-        num, W, rG, rJ, S, V, cacc, Vb, loads = self._kinematics(t_, y, p)
+    def _energy(self, num, W, rG, Vb, loads) -> tuple[float, float]:
         Ibody = self._inertias(num, W, rG)
-        T = 0.5 * sum(float(v @ I @ v) for v, I in zip(Vb, Ibody))
-        U = -float(sum(m * (num["g"] @ r) for m, r in zip(num["mass"], rG)))
+        T = 0.5 * float(np.einsum("bi,bij,bj->", Vb, Ibody, Vb))
+        U = -float(num["mass"] @ (rG @ num["g"]))
         U += float(np.sum(loads[self._n_load:]))
         return T, U
+
+
+def _planar(tr: Tree) -> bool:
+    """Motion in the Ex–Ey plane: every rotation about Ez, no offset, gravity or force along it, no torque
+    across it (then a pin has two reaction components, as the symbolic route names them)."""
+    if any(sp.simplify(e.axis[0]) != 0 or sp.simplify(e.axis[1]) != 0 for e in tr.edges):
+        return False
+
+    def along_z(v, which=(2,)):
+        return all(sp.simplify(sum((m[i] for m, _ in v.args), sp.Integer(0))) == 0 for i in which)
+
+    vecs = [jt.to_pin for jt in tr.joints] + [jt.to_centre for jt in tr.joints] + [d for _, d in tr.gravity]
+    if not all(along_z(v) for v in vecs):
+        return False
+    return all(along_z(vec, (0, 1) if arm is None else (2,)) for _, arm, vec, _ in tr.applications) and \
+        all(arm is None or along_z(arm) for _, arm, _, _ in tr.applications)
 
 
 def _cross(a, b):

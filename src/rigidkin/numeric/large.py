@@ -56,10 +56,9 @@ class _Monitor:
         reactions = {k: np.empty(len(times)) for k in m.reaction_names}
         T, U = np.empty(len(times)), np.empty(len(times))
         for j, tt in enumerate(times):
-            y = ys[:, j]
-            for k, v in m.reactions(float(tt), y, p).items():
+            r, T[j], U[j] = m.sample(float(tt), ys[:, j], p)
+            for k, v in r.items():
                 reactions[k][j] = v
-            T[j], U[j] = m.energy(float(tt), y, p)
         return {"reactions": reactions, "residuals": {}, "T": T, "U": U, "frictions": {}}
 
 
