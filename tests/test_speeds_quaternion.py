@@ -152,11 +152,11 @@ def test_euler_angles_are_singular_where_the_top_sleeps():
 A, B_, C = 0.3, 0.2, 0.1
 
 
-def _box():
+def _box(rates=None):
     s = rk.System("box")
     m = s.parameter("m", "kg", value=1.0)
     a, b, c = (s.parameter(n, "m", value=v) for n, v in (("a", A), ("b", B_), ("c", C)))
-    F = s.frame("B", quaternion=("e0", "e1", "e2", "e3"))
+    F = s.frame("B", quaternion=("e0", "e1", "e2", "e3"), rates=rates)
     s.body("box", rk.shapes.Box(m, a, b, c), frame=F, at=s.point("G", offset=0))
     return s
 
@@ -286,3 +286,21 @@ def test_sleeping_top_file_solve_and_simulate(tmp_path):
     assert tilt.max() < 1e-3
     assert np.abs(np.sum(E**2, axis=0) - 1).max() < 1e-8
     assert abs(res.energy_drift) < 1e-8
+
+
+@pytest.mark.slow
+def test_first_integrals_of_the_free_box():
+    """The answers that apply: T, the components of H about O along Ex, Ey, Ez and |H_O|² are first
+    integrals of the torque-free box in its speeds, with the values at the start computed by hand."""
+    from rigidkin.analysis.integrals import first_integrals
+
+    s = _box(rates=(3.0, 2.0, 1.0))
+    found = {fi.name: fi for fi in first_integrals(s.solve())}
+    vals = {v: x for v, x in zip(s.parameters.values(), (1.0, A, B_, C))}
+    I = np.array([B_**2 + C**2, A**2 + C**2, A**2 + B_**2]) / 12
+    w0 = np.array([3.0, 2.0, 1.0])
+    assert float(found["energy"].value.xreplace(vals)) == pytest.approx(0.5 * w0 @ (I * w0), rel=1e-14)
+    for k, axis in enumerate(("Ex", "Ey", "Ez")):
+        assert float(found[f"angular momentum about O along {axis}"].value.xreplace(vals)) == \
+            pytest.approx(I[k] * w0[k], rel=1e-14)
+    assert float(found["|H_O|²"].value.xreplace(vals)) == pytest.approx(np.sum((I * w0) ** 2), rel=1e-14)

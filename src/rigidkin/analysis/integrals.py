@@ -143,7 +143,7 @@ class FirstIntegral:
 
 def _rate_along(solution, regime, expr) -> sp.Expr:
     """d/dt of an expression of the state, with the accelerations of the solution substituted."""
-    d = sp.diff(expr, t)
+    d = solution.setup.reduction.reduce(sp.diff(expr, t))      # dependent rates (ė = W(q)u) eliminated
     for qd2, acc in regime.accelerations.items():
         d = d.xreplace({qd2.diff(t, 2): acc})
     return d
@@ -175,4 +175,34 @@ def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
         out.append(FirstIntegral(f"momentum conjugate to {q.func.__name__}", p, algebra.readable(at_state(p, state)),
                                  f"{q.func.__name__} is cyclic: it appears neither in the kinetic energy nor in "
                                  "the generalised forces"))
+    if getattr(solution.system, "speed_groups", None):
+        out += _angular_momentum(solution, regime, state)
+    return out
+
+
+def _angular_momentum(solution, regime, state) -> list[FirstIntegral]:
+    """The angular momentum about O, H_O = Σ (Ī·ω + r_G × m v_G), of a 3D system with angular speeds: its
+    components along the inertial axes and |H_O|², each kept only if its rate along the motion vanishes."""
+    from sympy.physics.vector import Vector
+
+    setup = solution.setup
+    kin = setup.kin
+    F = kin.F
+    H = Vector(0)
+    for b in solution.system.bodies.values():
+        if b.is_massless:
+            continue
+        G = b.centre
+        H += b.inertia.dot(kin.omega_of(b)) + kin.position(G).cross(b.mass * kin.velocity(G))
+    H = setup.vector(H)
+    comps = [algebra.readable(setup.scalar(H.dot(e))) for e in (F.x, F.y, F.z)]
+    out = []
+    for c, name in zip(comps, F.basis):
+        if c != 0 and algebra.is_zero(_rate_along(solution, regime, c)):
+            out.append(FirstIntegral(f"angular momentum about O along {name}", c, algebra.readable(at_state(c, state)),
+                                     f"the loads have no moment about O along {name}"))
+    mag = sum((c**2 for c in comps), sp.Integer(0))
+    if mag != 0 and algebra.is_zero(_rate_along(solution, regime, mag)):
+        out.append(FirstIntegral("|H_O|²", mag, algebra.readable(at_state(mag, state)),
+                                 "the magnitude of the angular momentum about O is constant"))
     return out
