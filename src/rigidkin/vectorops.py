@@ -46,6 +46,11 @@ def dot(a, b) -> sp.Expr:
     return sp.Add(*[x * y for x, y in zip(a, b) if x != 0 and y != 0])
 
 
+def dot_vectors(a: Vector, b: Vector) -> sp.Expr:
+    """a · b: ``a`` resolved once into each frame ``b`` is written in."""
+    return sp.Add(*[dot(in_frame(a, fr), list(m)) for m, fr in getattr(b, "args", ())])
+
+
 def cross(a: Vector, b: Vector) -> Vector:
     """a × b, written in the frames of ``b`` (as ``Vector.cross`` writes it)."""
     out = []

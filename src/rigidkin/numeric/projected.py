@@ -36,9 +36,9 @@ from dataclasses import dataclass
 import mpmath
 import numpy as np
 import sympy as sp
-from sympy.physics.vector import dynamicsymbols
+from sympy.physics.vector import Vector, dynamicsymbols
 
-from .. import algebra
+from .. import algebra, vectorops
 from ..errors import ConstraintError, ModelError, RigidkinError
 from ..kinematics import Kinematics, linear_form
 from ..model.speeds import STABILISATION, speeds_of
@@ -220,8 +220,11 @@ class ProjectedModel:
 
     def _partial(self, vel) -> list:
         """Partial velocities ∂vel/∂u_j (vectors, differentiated component by component in their frames)."""
-        Fr = self.kin.F.ref
-        return [vel.diff(u, Fr, var_in_dcm=False) if vel != 0 else vel for u in self.speeds]
+        if vel == 0:
+            return [vel for _ in self.speeds]
+        # the coefficients of the speeds, read in one pass per frame term (vel is linear in them)
+        cols = [(linear_form(list(m), list(self.speeds))[0], fr) for m, fr in vel.args]
+        return [Vector([(A.col(j), fr) for A, fr in cols]) for j in range(len(self.speeds))]
 
     def _generalised(self, app, vector=None) -> sp.Matrix:
         """Generalised force of one application: ∂v_P/∂q̇_j · F (or ∂ω/∂q̇_j · T for a torque)."""
@@ -239,11 +242,11 @@ class ProjectedModel:
                 # v_P = v_G + ω × (r_P − r_G): ∂v_P/∂q̇ = ∂v_G/∂q̇ + ∂ω/∂q̇ × (r_P − r_G), r_P free of rates
                 pv, pw = self._body_partials(app.body)
                 r = loc - kin.position(app.body.centre)
-                return [a + b.cross(r) if b != 0 else a for a, b in zip(pv, pw)]
+                return [a + vectorops.cross(b, r) if b != 0 else a for a, b in zip(pv, pw)]
         if key not in self._partials_cache:
             self._partials_cache[key] = make()
         vec = app.vector if vector is None else vector
-        return sp.Matrix([p.dot(vec) if p != 0 else 0 for p in self._partials_cache[key]])
+        return sp.Matrix([vectorops.dot_vectors(p, vec) if p != 0 else 0 for p in self._partials_cache[key]])
 
     def _values(self, values) -> dict:
         vals = dict(self.system.parameter_values())
