@@ -304,3 +304,26 @@ def test_first_integrals_of_the_free_box():
         assert float(found[f"angular momentum about O along {axis}"].value.xreplace(vals)) == \
             pytest.approx(I[k] * w0[k], rel=1e-14)
     assert float(found["|H_O|²"].value.xreplace(vals)) == pytest.approx(np.sum((I * w0) ** 2), rel=1e-14)
+
+
+@pytest.mark.parametrize("old, new, field", [
+    ('speeds = ["w1", "w2", "w3"]', 'speeds = ["w1", "w2", "g"]', "frames.B.speeds[2]"),
+    ('quaternion = ["e0", "e1", "e2", "e3"]', 'quaternion = ["e0", "e1", "e2"]', "frames.B.quaternion"),
+    ('rates = ["1 mrad/s", 0, 150]', 'rates = ["1 m", 0, 150]', "frames.B.rates[0]"),
+    ('rates = ["1 mrad/s", 0, 150]', 'rates = ["1 mrad/s", 0, 150]\nangle = "0"', "frames.B.angle"),
+    ('rates = ["1 mrad/s", 0, 150]', 'initial = [0, 0, 0, 0]', "frames.B"),
+])
+def test_bad_quaternion_frames_in_files(tmp_path, old, new, field):
+    """Each mistake: one paragraph naming the file, the line and the field (validate exits 2)."""
+    from rigidkin.cli import main
+
+    assert old in TOP_FILE
+    path = tmp_path / "top.toml"
+    path.write_text(TOP_FILE.replace(old, new))
+    with pytest.raises(rk.RigidkinError) as info:
+        from rigidkin.io.problem import load_problem
+
+        load_problem(path)
+    msg = str(info.value)
+    assert "top.toml, line" in msg and field in msg and "\n" not in msg.strip()
+    assert main(["validate", str(path)]) == 2
