@@ -116,7 +116,9 @@ class ProjectedModel:
             A, b = sp.zeros(0, nu), sp.zeros(0, 1)
         # A u̇ + c0 = 0: the rows' time derivatives (q̇ = W u again) with the speeds' rates set to zero
         zero_acc = {a: 0 for a in accels}
-        c0 = sp.Matrix([self._ke(sp.diff(v, t)).xreplace(zero_acc) for v in velocities]) if relating \
+        # (rows linear in the speeds: d/dt (A u + b) with u̇ = 0 is Ȧ u + ḃ, no product rule through u)
+        c0 = sp.Matrix([self._ke(sum((sp.diff(A[i, j], t) * u for j, u in enumerate(self.speeds) if A[i, j] != 0),
+                                     sp.diff(b[i], t))).xreplace(zero_acc) for i in range(A.rows)]) if relating \
             else sp.zeros(0, 1)
         gaps = [sp.sympify(r.gap) for r in relating if r.gap is not None and not algebra.is_zero(r.gap)]
         # independent speeds -------------------------------------------------------------------------
