@@ -117,12 +117,17 @@ class RegimeFunctions:
             self._react = compile_functions(args_acc, [lay.to_plain(e) for e in (*Ar, *rhs)])
         # stage 3
         qdot, udot = [], []
+        from ..model.speeds import STABILISATION
+        # Euler parameters: ė = ½Q(e)w + k(1 − |e|²)e holds |e| at 1 (the frame turns by e/|e|: nothing physical changes)
+        euler = {e: g.coordinates for g in getattr(solution.system, "speed_groups", {}).values()
+                 if g.kind == "quaternion" for e in g.coordinates}
         for q in lay.coordinates:
             if q in self.independent:
                 qdot.append(q.diff(t))
                 udot.append(to_acc[q.diff(t, 2)])
             else:
-                qdot.append(red.rate_map[q.diff(t)])
+                qdot.append(red.rate_map[q.diff(t)] + (STABILISATION * (1 - sum(e**2 for e in euler[q])) * q
+                                                       if q in euler else 0))
                 udot.append(sp.sympify(red.accel_map[q.diff(t, 2)]).xreplace(to_acc).xreplace(red.rate_map))
         args_all = base[:n_t] + acc_syms + self.reaction_symbols + base[n_t:]
         self.n_quantities = len(quantities)
