@@ -118,7 +118,7 @@ class RegimeFunctions:
         # stage 3
         qdot, udot = [], []
         from ..model.speeds import STABILISATION
-        # Euler parameters: ė = ½Q(e)w + k(1 − |e|²)e holds |e| at 1 (the frame turns by e/|e|: nothing physical changes)
+        # Euler parameters: ė = ½Q(e)w + k(1 − |e|²)e holds |e| at 1 (the frame turns by e/|e|: no physical change)
         euler = {e: g.coordinates for g in getattr(solution.system, "speed_groups", {}).values()
                  if g.kind == "quaternion" for e in g.coordinates}
         for q in lay.coordinates:
