@@ -114,9 +114,13 @@ def test_pin_reactions_and_energy_agree_with_the_symbolic_route():
     from rigidkin.numeric.simulate import hybrid_of
 
     model = hybrid_of(s).model({}, 0)
+    numpy_step = ArticulatedModel(s, use_c=False)
     for y in states(3, np.random.default_rng(1)):
         y = np.concatenate([y, [0.0]])
         r1, r2 = am.reactions(0.0, y, p), model.reactions(0.0, y, p)
+        r3, T3, U3 = numpy_step.sample(0.0, y, p)
+        assert all(abs(r3[k] - r2[k]) <= 1e-10 * max(1.0, abs(r2[k])) for k in r2)
+        assert np.allclose((T3, U3), model.energy(0.0, y, p), rtol=1e-12, atol=1e-12)
         assert set(r1) == set(r2) == {"R_P0x", "R_P0y", "R_P1x", "R_P1y", "R_P2x", "R_P2y"}
         assert all(abs(r1[k] - r2[k]) <= 1e-10 * max(1.0, abs(r2[k])) for k in r2)
         assert np.allclose(am.energy(0.0, y, p), model.energy(0.0, y, p), rtol=1e-12, atol=1e-12)

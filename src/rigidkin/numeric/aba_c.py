@@ -20,7 +20,7 @@ typedef struct {
   const double *K, *K2, *evals, *econst, *to_pin, *to_centre, *mass, *Ib, *naxis, *nval, *g, *pdiag, *pval;
   double *work;
 } rk_tree;
-int rk_aba(const rk_tree *T, const double *q, const double *u, double *qdd);
+int rk_aba(const rk_tree *T, const double *q, const double *u, double *qdd, double *jf, double *TU);
 """
 
 SOURCE = r"""
@@ -53,7 +53,7 @@ static void crf(const double *v, const double *f, double *o) {     /* v x* f */
   o[0] += t[0]; o[1] += t[1]; o[2] += t[2];
 }
 
-int rk_aba(const rk_tree *T, const double *q, const double *u, double *qdd) {
+int rk_aba(const rk_tree *T, const double *q, const double *u, double *qdd, double *jf, double *TU) {
   const int E = T->E, nb = T->nb, nn = T->nn, n = T->n;
   double *W = T->work, *alpha = W + 9*(E+1), *rG = alpha + E, *rJ = rG + 3*nb, *S = rJ + 3*nb;
   double *V = S + 6*nn, *C = V + 6*nn, *IA = C + 6*nn, *pA = IA + 36*nn, *U = pA + 6*nn, *D = U + 6*nn;
@@ -87,6 +87,7 @@ int rk_aba(const rk_tree *T, const double *q, const double *u, double *qdd) {
     crm(V + 6*k, vj, C + 6*k);
   }
   memset(IA, 0, 36*nn*sizeof(double)); memset(pA, 0, 6*nn*sizeof(double));
+  double Tk = 0.0, Ug = 0.0;
   for (int b = 0; b < nb; b++) {
     int a = T->attach[b];
     if (a < 0) continue;
@@ -102,6 +103,8 @@ int rk_aba(const rk_tree *T, const double *q, const double *u, double *qdd) {
     }
     for (int i = 0; i < 6; i++) { h[i] = 0; for (int j = 0; j < 6; j++) h[i] += I6[6*i+j]*v[j]; }
     crf(v, h, p);
+    for (int i = 0; i < 6; i++) Tk += 0.5*v[i]*h[i];
+    Ug -= m*(T->g[0]*r[0] + T->g[1]*r[1] + T->g[2]*r[2]);
     for (int i = 0; i < 36; i++) IA[36*a+i] += I6[i];
     for (int i = 0; i < 6; i++) pA[6*a+i] += p[i];
   }
@@ -126,6 +129,12 @@ int rk_aba(const rk_tree *T, const double *q, const double *u, double *qdd) {
     for (int i = 0; i < 6; i++) { a[i] = (par >= 0 ? A[6*par+i] : base[i]) + C[6*k+i]; s += U[6*k+i]*a[i]; }
     pdd[k] = (uu[k] - s) / D[k];
     for (int i = 0; i < 6; i++) A[6*k+i] = a[i] + S[6*k+i]*pdd[k];
+  }
+  if (TU) { TU[0] = Tk; TU[1] = Ug; }
+  if (jf) for (int k = 0; k < nn; k++) for (int i = 0; i < 6; i++) {   /* the force each joint transmits */
+    double f = pA[6*k+i];
+    for (int j = 0; j < 6; j++) f += IA[36*k+6*i+j]*A[6*k+j];
+    jf[6*k+i] = f;
   }
   if (!T->plan) { for (int k = 0; k < n; k++) qdd[k] = pdd[k]; return 0; }
   for (int k = 0; k < n; k++) {
@@ -195,13 +204,24 @@ class CompiledTree:
         self._lu = None if plan else num["solve"]
 
     def qdd(self, q, u) -> np.ndarray:
+        return self._call(q, u, None, None)
+
+    def sample(self, q, u) -> tuple[np.ndarray, np.ndarray, float, float]:
+        """(q̈, the spatial force each joint degree of freedom transmits (nodes × 6), T, U)."""
+        jf, TU = np.empty((self.T.nn, 6)), np.empty(2)
+        qdd = self._call(q, u, jf, TU)
+        return qdd, jf, float(TU[0]), float(TU[1])
+
+    def _call(self, q, u, jf, TU) -> np.ndarray:
         ffi = self.ffi
         q = np.ascontiguousarray(q, dtype=float)
         u = np.ascontiguousarray(u, dtype=float)
         out = np.empty(self.n)
         self.lib.rk_aba(self.T, ffi.cast("const double *", ffi.from_buffer("double[]", q)),
                         ffi.cast("const double *", ffi.from_buffer("double[]", u)),
-                        ffi.cast("double *", ffi.from_buffer("double[]", out)))
+                        ffi.cast("double *", ffi.from_buffer("double[]", out)),
+                        ffi.NULL if jf is None else ffi.cast("double *", ffi.from_buffer("double[]", jf)),
+                        ffi.NULL if TU is None else ffi.cast("double *", ffi.from_buffer("double[]", TU)))
         return out if self._lu is None else self._lu(out)
 
 

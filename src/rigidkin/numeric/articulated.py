@@ -384,22 +384,28 @@ class ArticulatedModel:
 
     def sample(self, t_, y, p) -> tuple[dict, float, float]:
         """(pin reactions, T, U) at the state from one evaluation of the algorithm."""
-        _, (IA, pA, A, _), _, (num, W, rG, Vb, loads) = self.dynamics(t_, y, p)
+        tr, n = self.tree, self.n
+        fast = self.numbers(p)["c"]
+        if fast is not None and all(frame is self.system.inertial for _, _, frame, _ in self._react):
+            _, jf, T, U = fast.sample(y[:n], y[n:2 * n])
+            W, energy = None, (T, U)
+        else:
+            _, (IA, pA, A, _), _, (num, W, rG, Vb, loads) = self.dynamics(t_, y, p)
+            jf = np.array([IA[k] @ A[k] + pA[k] for k in range(len(tr.nodes))])
+            energy = self._energy(num, W, rG, Vb, loads)
         out = {}
         names = iter(self.reaction_names)
-        tr = self.tree
         for j, sign, frame, k in self._react:
             nodes = tr.joints[j].nodes
             if nodes:
-                f = IA[nodes[0]] @ A[nodes[0]] + pA[nodes[0]]
-                force = sign * f[3:]
+                force = sign * jf[nodes[0]][3:]
             else:
                 force = np.full(3, np.nan)       # a welded body: its joint force is not computed here
-            Wf = W[tr.frame_index[frame.ref]] if frame.ref in tr.frame_index else np.eye(3)
+            Wf = W[tr.frame_index[frame.ref]] if W is not None and frame.ref in tr.frame_index else np.eye(3)
             comp = Wf.T @ force
             for i in range(k):
                 out[next(names)] = float(comp[i])
-        return (out, *self._energy(num, W, rG, Vb, loads))
+        return (out, *energy)
 
     def _energy(self, num, W, rG, Vb, loads) -> tuple[float, float]:
         Ibody = self._inertias(num, W, rG)
