@@ -72,27 +72,35 @@ def numeric_value(expr: sp.Basic, rng: random.Random) -> complex:
     return complex(plain.xreplace(values).evalf(30))
 
 
-def state_point(exprs, rng: random.Random, t_value: float, exclude=()) -> dict:
-    """Random values of everything ``exprs`` depend on, keyed by the objects themselves (q(t), q̇, q̈,
-    parameters) — the same values ``random_point`` gives the plain symbols of ``plain_state``, without
-    rewriting the expressions; time takes ``t_value``; the symbols in ``exclude`` get no value."""
+def state_atoms(exprs, exclude=()) -> list:
+    """The plain symbols of ``plain_state`` (each with the q(t), q̇ ... it stands for) and the parameters
+    that ``exprs`` depend on: [(symbol for random_point, the object in the expressions)]."""
     funcs: set = set()
     derivs: set = set()
     syms: set = set()
     for e in exprs:
         for a in sp.sympify(e).atoms(sp.Symbol, sp.Derivative, AppliedUndef):
             (derivs if isinstance(a, sp.Derivative) else funcs if isinstance(a, AppliedUndef) else syms).add(a)
-    plain: dict = {}
+    out = []
     funcs = {f for f in funcs if f.args == (t,)}
     for d in derivs:
         if d.expr in funcs:
-            plain[sp.Symbol(f"_{d.expr.func.__name__}_d{sum(c for _, c in d.variable_count)}", real=True)] = d
-    for f in funcs:
-        plain[sp.Symbol(f"_{f.func.__name__}_d0", real=True)] = f
+            out.append((sp.Symbol(f"_{d.expr.func.__name__}_d{sum(c for _, c in d.variable_count)}", real=True), d))
+    out += [(sp.Symbol(f"_{f.func.__name__}_d0", real=True), f) for f in funcs]
     syms.discard(t)
     syms.difference_update(exclude)
-    values = random_point(list(plain) + list(syms), rng)
-    out = {plain.get(k, k): float(v) for k, v in values.items()}
+    return out + [(s_, s_) for s_ in syms]
+
+
+def state_point(exprs, rng: random.Random, t_value: float, exclude=(), atoms=None) -> dict:
+    """Random values of everything ``exprs`` depend on, keyed by the objects themselves (q(t), q̇, q̈,
+    parameters) — the same values ``random_point`` gives the plain symbols of ``plain_state``, without
+    rewriting the expressions; time takes ``t_value``; the symbols in ``exclude`` get no value.
+    ``atoms``: ``state_atoms(exprs, exclude)`` when already found."""
+    atoms = state_atoms(exprs, exclude) if atoms is None else atoms
+    back = dict(atoms)
+    values = random_point(back, rng)
+    out = {back[k]: float(v) for k, v in values.items()}
     out[t] = t_value
     return out
 
@@ -146,9 +154,10 @@ def _machine_verdict(expr: sp.Basic, trials: int, seed: int, tol: float) -> bool
     in between (then the 30-digit evaluation decides)."""
     rng = random.Random(seed)
     terms = list(sp.Add.make_args(expr))
+    atoms = state_atoms([expr])
     zero = True
     for _ in range(trials):
-        vals = state_point([expr], rng, 0.0)
+        vals = state_point([expr], rng, 0.0, atoms=atoms)
         vals[t] = rng.uniform(0.1, 1.0)          # the draws numeric_value makes
         v = evaluate(terms, vals)
         total = abs(sum(v))

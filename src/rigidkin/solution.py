@@ -373,8 +373,9 @@ def _working_reactions(rows, reactions) -> list:
     C, _ = linear_form(rows, reactions)
     entries = list(C)
     found = np.zeros(len(reactions))
+    atoms = algebra.state_atoms(entries, exclude=reactions)
     for seed in (3, 4):
-        vals = algebra.state_point(entries, random.Random(seed), 0.41, exclude=reactions)
+        vals = algebra.state_point(entries, random.Random(seed), 0.41, atoms=atoms)
         with np.errstate(all="ignore"):
             num = np.abs(np.array(algebra.evaluate(entries, vals), dtype=complex).reshape(C.shape))
         found = np.maximum(found, np.nan_to_num(num, nan=np.inf).max(axis=0))
