@@ -88,3 +88,13 @@ def test_projected_rows_workless_reactions_cancel():
     acc = sol.accelerations[th]
     resid = rows.raw_mass_matrix[0, 0] * acc - rows.raw_forcing[0]
     assert algebra.is_zero(resid)
+
+
+def test_time_derivatives_match_diff():
+    q, p = dynamicsymbols("q p")
+    a = sp.Symbol("a", positive=True)
+    shared = sp.sin(q) * sp.cos(p) ** 2 * a
+    exprs = [shared + q.diff(t) * sp.sqrt(a + sp.sin(q)), sp.exp(q) * t * shared, (a * q + p) ** 3 / (1 + shared),
+             sp.atan2(sp.sin(q), p), a]
+    for e, d in zip(exprs, algebra.time_derivatives(exprs)):
+        assert algebra.is_zero(d - e.diff(t))

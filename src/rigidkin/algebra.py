@@ -105,6 +105,49 @@ def state_point(exprs, rng: random.Random, t_value: float, exclude=(), atoms=Non
     return out
 
 
+def time_derivatives(exprs) -> list:
+    """d/dt of each expression (q(t) → q̇, q̇ → q̈, parameters constant), one pass with every shared
+    subexpression differentiated once (sympy's ``diff`` differentiates a repeated subtree each time)."""
+    memo: dict = {}
+    zero = sp.Integer(0)
+
+    def d(e):
+        hit = memo.get(e)
+        if hit is not None:
+            return hit
+        if e.is_Number or e.is_NumberSymbol or (e.is_Symbol and e != t):
+            out = zero
+        elif e == t:
+            out = sp.Integer(1)
+        elif e.is_Add:
+            out = sp.Add(*[d(a) for a in e.args])
+        elif e.is_Mul:
+            args = e.args
+            parts = []
+            for i, a in enumerate(args):
+                da = d(a)
+                if da != 0:
+                    parts.append(sp.Mul(*args[:i], da, *args[i + 1:]))
+            out = sp.Add(*parts)
+        elif e.is_Pow and not e.exp.has(t):
+            db = d(e.base)
+            out = e.exp * e.base ** (e.exp - 1) * db if db != 0 else zero
+        elif isinstance(e, sp.sin):
+            out = sp.cos(e.args[0]) * d(e.args[0])
+        elif isinstance(e, sp.cos):
+            out = -sp.sin(e.args[0]) * d(e.args[0])
+        elif isinstance(e, (AppliedUndef, sp.Derivative)) and e.has(t):
+            out = e.diff(t)
+        elif not e.has(t):
+            out = zero
+        else:
+            out = e.diff(t)
+        memo[e] = out
+        return out
+
+    return [d(sp.sympify(e)) for e in exprs]
+
+
 _UNARY = {sp.sin: cmath.sin, sp.cos: cmath.cos, sp.tan: cmath.tan, sp.exp: cmath.exp, sp.log: cmath.log,
           sp.asin: cmath.asin, sp.acos: cmath.acos, sp.atan: cmath.atan, sp.sinh: cmath.sinh,
           sp.cosh: cmath.cosh, sp.tanh: cmath.tanh, sp.Abs: abs}

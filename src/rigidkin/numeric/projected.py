@@ -117,9 +117,10 @@ class ProjectedModel:
         # A u̇ + c0 = 0: the rows' time derivatives (q̇ = W u again) with the speeds' rates set to zero
         zero_acc = {a: 0 for a in accels}
         # (rows linear in the speeds: d/dt (A u + b) with u̇ = 0 is Ȧ u + ḃ, no product rule through u)
-        c0 = sp.Matrix([self._ke(sum((sp.diff(A[i, j], t) * u for j, u in enumerate(self.speeds) if A[i, j] != 0),
-                                     sp.diff(b[i], t))).xreplace(zero_acc) for i in range(A.rows)]) if relating \
-            else sp.zeros(0, 1)
+        dA = algebra.time_derivatives(list(A) + list(b)) if relating else []   # shared subtrees once
+        c0 = sp.Matrix([self._ke(sum((dA[i * A.cols + j] * u for j, u in enumerate(self.speeds) if A[i, j] != 0),
+                                     dA[A.rows * A.cols + i])).xreplace(zero_acc) for i in range(A.rows)]) \
+            if relating else sp.zeros(0, 1)
         gaps = [sp.sympify(r.gap) for r in relating if r.gap is not None and not algebra.is_zero(r.gap)]
         # independent speeds -------------------------------------------------------------------------
         self._plain = {**{u: sp.Symbol(f"_u{i}", real=True) for i, u in enumerate(self.speeds)},
