@@ -9,7 +9,7 @@ import sympy as sp
 from sympy.physics.vector import ReferenceFrame, dynamicsymbols
 
 from rigidkin import algebra, examples, vectorops
-from rigidkin.kinematics import _split_by_diff, linear_form
+from rigidkin.linear import _split_by_diff, linear_form
 from rigidkin.mode import setup_mode
 
 t = dynamicsymbols._t

@@ -23,6 +23,7 @@ from sympy.physics.vector import Vector, dynamicsymbols
 
 from . import algebra, vectorops
 from .errors import ConstraintError
+from .linear import linear_form
 from .model.speeds import speeds_of
 from .trace import Trace
 
@@ -234,85 +235,6 @@ def _numeric_matrix(M: sp.Matrix, rng: random.Random) -> np.ndarray:
     vals = algebra.random_point(plain.free_symbols - {t}, rng)
     vals[t] = sp.Float(0.37)
     return np.array(plain.xreplace(vals).evalf(), dtype=complex)
-
-
-def linear_form(exprs, unknowns):
-    """(A, b) with exprs = A·unknowns + b, for expressions linear in ``unknowns`` (Derivatives allowed).
-
-    One pass over each expression tree (shared subtrees visited once): a sum splits term by term, a
-    product keeps its unknown-free factors as the coefficient of the one factor that holds unknowns.
-    O(size) instead of one derivative per unknown; an expression that is not visibly linear in this
-    way (an unknown inside a power or a function) is differentiated instead.
-    """
-    unknowns = list(unknowns)
-    index = {u: i for i, u in enumerate(unknowns)}
-    memo: dict = {}
-    rows, rest = [], []
-    for e in exprs:
-        e = sp.sympify(e)
-        try:
-            coeffs, const = _split_linear(e, index, memo)
-        except _NotLinear:
-            coeffs, const = _split_by_diff(e, unknowns)
-        rows.append([coeffs.get(i, sp.Integer(0)) for i in range(len(unknowns))])
-        rest.append(const)
-    return sp.Matrix(len(rows), len(unknowns), [c for r in rows for c in r]), sp.Matrix(rest)
-
-
-class _NotLinear(Exception):
-    """An unknown sits where a one-pass split cannot take it out (a power, a function's argument)."""
-
-
-_NONE: dict = {}
-
-
-def _split_linear(e, index, memo):
-    """({unknown index: coefficient}, remainder) of ``e``; the remainder is ``e`` itself when free."""
-    hit = memo.get(e)
-    if hit is not None:
-        return hit
-    if e in index:
-        out = ({index[e]: sp.Integer(1)}, sp.Integer(0))
-    elif e.is_Atom:
-        out = (_NONE, e)
-    elif e.is_Add:
-        parts = [_split_linear(a, index, memo) for a in e.args]
-        if all(not c for c, _ in parts):
-            out = (_NONE, e)
-        else:
-            coeffs: dict = {}
-            for c, _ in parts:
-                for i, v in c.items():
-                    coeffs.setdefault(i, []).append(v)
-            out = ({i: sp.Add(*v) for i, v in coeffs.items()}, sp.Add(*[r for _, r in parts]))
-    elif e.is_Mul:
-        parts = [_split_linear(a, index, memo) for a in e.args]
-        holding = [k for k, (c, _) in enumerate(parts) if c]
-        if not holding:
-            out = (_NONE, e)
-        elif len(holding) > 1:
-            raise _NotLinear
-        else:
-            k = holding[0]
-            other = sp.Mul(*[a for j, a in enumerate(e.args) if j != k])
-            c, r = parts[k]
-            out = ({i: other * v for i, v in c.items()}, other * r)
-    else:
-        if any(_split_linear(a, index, memo)[0] for a in e.args if isinstance(a, sp.Basic)):
-            raise _NotLinear
-        out = (_NONE, e)
-    memo[e] = out
-    return out
-
-
-def _split_by_diff(e, unknowns):
-    dummies = [sp.Dummy(f"u{i}") for i in range(len(unknowns))]
-    e = e.xreplace(dict(zip(unknowns, dummies)))
-    present = e.free_symbols
-    coeffs = {i: e.diff(d) for i, d in enumerate(dummies) if d in present}
-    back = dict(zip(dummies, unknowns))
-    return ({i: c.xreplace(back) for i, c in coeffs.items()},
-            e.xreplace(dict.fromkeys(dummies, sp.Integer(0))).xreplace(back))
 
 
 def solve_square(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, seed: int = 7) -> sp.Matrix:
