@@ -13,6 +13,7 @@ import sympy as sp
 
 import rigidkin as rk
 from rigidkin.numeric import simulate
+from rigidkin.numeric.state import StateLayout
 
 M, R, G, MU = 0.17, 0.028575, 9.81, 0.2
 SPEEDS = ("wx", "wy", "wz")
@@ -37,6 +38,11 @@ def billiard() -> rk.System:
     return s
 
 
+def _speed_label(name: str, labels) -> str:
+    """The state slot of a body angular speed (named ``w`` or, in older layouts, ``dot(w_int)``)."""
+    return name if name in labels else f"dot({name}_int)"
+
+
 def _omega(st) -> np.ndarray:
     """ω in the ground's basis from the quaternion and the body components, written independently of the library."""
     e = np.array([st[f"B_e{i}"] for i in range(4)])
@@ -44,7 +50,7 @@ def _omega(st) -> np.ndarray:
     rows = np.array([[e0**2 + e1**2 - e2**2 - e3**2, 2 * (e1 * e2 + e0 * e3), 2 * (e1 * e3 - e0 * e2)],
                      [2 * (e1 * e2 - e0 * e3), e0**2 - e1**2 + e2**2 - e3**2, 2 * (e2 * e3 + e0 * e1)],
                      [2 * (e1 * e3 + e0 * e2), 2 * (e2 * e3 - e0 * e1), e0**2 - e1**2 - e2**2 + e3**2]])
-    return rows.T @ np.array([st[f"dot({w}_int)"] for w in SPEEDS])
+    return rows.T @ np.array([st[_speed_label(w, st)] for w in SPEEDS])
 
 
 @pytest.fixture(scope="module")
@@ -70,10 +76,12 @@ def test_billiard_ball_path_until_rolling(system, case):
     t_roll = 2 * np.linalg.norm(vs0) / (7 * MU * G)
     e = np.array([0.9, 0.1, -0.3, 0.2]) / np.linalg.norm([0.9, 0.1, -0.3, 0.2])
     quat = {f"B_e{i}": e[i] for i in range(4)}
-    to_ground = np.array([_omega({**quat, **{f"dot({w}_int)": float(k == j) for j, w in enumerate(SPEEDS)}})
+    labels = StateLayout.of(system).labels
+    to_ground = np.array([_omega({**quat, **{_speed_label(w, labels): float(k == j) for j, w in enumerate(SPEEDS)}})
                           for k in range(3)]).T           # body components of ω → ground components
     body = np.linalg.solve(to_ground, w0)
-    initial = {"x": 0.0, "y": 0.0, "dot(x)": vx, "dot(y)": vy, **{f"dot({w}_int)": c for w, c in zip(SPEEDS, body)}}
+    initial = {"x": 0.0, "y": 0.0, "dot(x)": vx, "dot(y)": vy,
+               **{_speed_label(w, labels): c for w, c in zip(SPEEDS, body)}}
     res = simulate(system, 2.5 * t_roll, initial)
     assert res.reached_end
     sticks = [e for e in res.events if e.kind == "sticks"]
@@ -155,3 +163,79 @@ def test_rolling_ball_pulled_starts_to_slip_in_the_pull_direction():
             speed += k * (t**2 - t_star**2) / (2 * M) - MU * G * (t - t_star)
         st = res.at(t)
         assert np.allclose([st["dot(x)"], st["dot(y)"]], speed * p_hat[:2], rtol=0, atol=1e-7)
+
+
+# The tippe top: a sphere (radius R, centre C) whose mass centre G lies a below C on its symmetry axis e3, on a
+# rough plane (Coulomb µ), spun fast about the vertical through G with e3 tilted by 0.1 rad.  With
+# 1 − a/R < I3/I1 < 1 + a/R it turns over onto its stem: G rises above C.  Energy is lost only by the friction
+# work ∫ F·v_s dt = −µ ∫ N |v_s| dt (the normal force does no work: C stays at height R).
+TOP = {"m": 0.015, "R": 0.025, "a": 0.3 * 0.025, "I1": 131 / 350 * 0.015 * 0.025**2,
+       "I3": 2 / 5 * 0.015 * 0.025**2, "mu": 0.3, "g": 9.81}
+TILT, TURN, SPIN = 0.1, 0.7, 155.0
+T_TOP = 1.3
+
+
+def _quat_mul(p, q):
+    p0, p1, p2, p3 = p
+    q0, q1, q2, q3 = q
+    return np.array([p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3, p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
+                     p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1, p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0])
+
+
+def _rows(e) -> np.ndarray:
+    """Rows: the body axes in the ground's basis, for the quaternion e (normalised here)."""
+    e0, e1, e2, e3 = np.asarray(e) / np.linalg.norm(e)
+    return np.array([[e0**2 + e1**2 - e2**2 - e3**2, 2 * (e1 * e2 + e0 * e3), 2 * (e1 * e3 - e0 * e2)],
+                     [2 * (e1 * e2 - e0 * e3), e0**2 - e1**2 + e2**2 - e3**2, 2 * (e2 * e3 + e0 * e1)],
+                     [2 * (e1 * e3 + e0 * e2), 2 * (e2 * e3 - e0 * e1), e0**2 - e1**2 - e2**2 + e3**2]])
+
+
+# tilted about Ex, turned about the body's own axis (every Euler parameter nonzero)
+Q_TOP = _quat_mul([np.cos(TILT / 2), np.sin(TILT / 2), 0, 0], [np.cos(TURN / 2), 0, 0, np.sin(TURN / 2)])
+
+
+def tippe_top() -> rk.System:
+    s = rk.System("tippe-top")
+    p = {k: s.parameter(k, u, value=TOP[k]) for k, u in
+         (("m", "kg"), ("R", "m"), ("a", "m"), ("I1", "kg*m^2"), ("I3", "kg*m^2"), ("mu", "1"), ("g", "m/s^2"))}
+    F = s.inertial
+    x = s.coordinate("x", "centre C along Ex", kind="length")
+    y = s.coordinate("y", "centre C along Ey", kind="length")
+    z = s.coordinate("z", "height of C", kind="length", initial=TOP["R"])
+    B = s.frame("B", quaternion=True, speeds=("w1", "w2", "w3"), initial=tuple(Q_TOP),
+                rates=tuple(_rows(Q_TOP) @ [0.0, 0.0, SPIN]))
+    C = s.point("C", offset=x * F.x + y * F.y + z * F.z)
+    G = s.point("G", from_=C, offset=-p["a"] * B.z)
+    top = s.body("top", rk.shapes.Inertia(p["m"], p["I1"], p["I1"], p["I3"]), frame=B, at=G)
+    s.contact("P", top, s.plane(s.origin, F.z, name="table"), centre=C, radius=p["R"], friction=p["mu"],
+              normal_name="N")
+    s.gravity(p["g"], -F.z)
+    return s
+
+
+@pytest.mark.slow
+def test_tippe_top_inverts_losing_energy_only_by_friction_work():
+    s = tippe_top()
+    vc = np.cross([0.0, 0.0, SPIN], TOP["a"] * _rows(Q_TOP)[2])    # G at rest: v_C = ω × (C − G)
+    res = simulate(s, T_TOP, {"x": 0.0, "y": 0.0, "dot(x)": vc[0], "dot(y)": vc[1]}, n_points=8001)
+    assert res.reached_end
+    assert all(e.kind == "reverses" for e in res.events)              # it slips throughout
+    rise = []
+    speed = []
+    for row in res.y:
+        st = dict(zip(res.layout.labels, row))
+        axes = _rows([st[f"B_e{i}"] for i in range(4)])
+        rise.append(-TOP["a"] * axes[2, 2])                           # z_G − z_C = −a e3·Ez
+        w = axes.T @ [st[_speed_label(n, st)] for n in ("w1", "w2", "w3")]
+        vs = np.array([st["dot(x)"], st["dot(y)"], 0.0]) + np.cross(w, [0.0, 0.0, -TOP["R"]])
+        speed.append(np.linalg.norm(vs))
+    rise = np.array(rise)
+    assert rise[0] < -0.99 * TOP["a"] and rise[-1] > 0.9 * TOP["a"]     # G below C, then above: inverted
+    E, W = res["E"], res["W"]
+    assert np.max(np.abs(E - E[0] - W)) < 1e-8 * E[0]                 # E(t) − E(0) = ∫ F·v_s dt
+    assert W[-1] < -0.05 * E[0] and np.all(np.diff(W) <= 1e-12 * E[0])
+    # the same work from the histories, independently: −µ ∫ N |v_s| dt (Simpson)
+    from scipy.integrate import simpson
+
+    work = simpson(-TOP["mu"] * res["N"] * np.array(speed), x=res.t)
+    assert abs(work - W[-1]) < 1e-4 * abs(W[-1])
