@@ -177,13 +177,15 @@ def evaluate(exprs, values: Mapping) -> list[complex]:
                 v = b ** int(x) if x.is_Integer else (cmath.sqrt(b) if x == sp.S.Half else b ** ev(x))
             elif e.func in _UNARY:
                 v = _UNARY[e.func](ev(e.args[0]))
-            elif e.is_Function and e.args:
+            elif getattr(e, "is_Defined", False):
+                v = ev(e.definition)             # a derived quantity means its definition
+            elif e.is_Function and e.args and all(isinstance(a, sp.Expr) for a in e.args):
                 args = [ev(a) for a in e.args]
                 v = complex(e.func(*[sp.Float(a.real) if a.imag == 0 else sp.Float(a.real) + sp.I * a.imag
                                      for a in args]).evalf())
             else:
                 v = complex(e.evalf())
-        except (ZeroDivisionError, OverflowError, TypeError, ValueError):
+        except (ZeroDivisionError, OverflowError, TypeError, ValueError, AttributeError):
             v = complex("nan")
         memo[e] = v
         return v
