@@ -154,3 +154,31 @@ def test_heavy_top_equation_of_motion_coefficient():
     I1, I3 = (s.parameter_info[n].symbol for n in ("I1", "I3"))
     assert sp.count_ops(coeff) < sp.count_ops(I1 + I3 * sp.cos(th) ** 2 - I1 * sp.cos(th) ** 2)
     assert_equal_everywhere(coeff.xreplace({th: x}), I1 * S**2 + I3 * C**2)
+
+
+def test_a_negated_product_keeps_its_sign():
+    """−(a² + b²)(−u cos x − v sin x + w) sin x: the minus sign moves into the factor with more minus
+    terms, never lost (torque-free body's Lagrange equation read with the wrong sign before)."""
+    a, b, u, v, w = sp.symbols("a b u v w", positive=True)
+    e = -(a**2 + b**2) * (-u * C - v * S + w) * S
+    out = compact(e)
+    assert sp.expand(out - e) == 0
+    assert_equal_everywhere(out, e)
+
+
+def test_compact_never_changes_a_value(monkeypatch):
+    """The guard: a rewriting that would change the value is refused (checked at random states)."""
+    from rigidkin import trigforms
+
+    a = sp.Symbol("a", positive=True)
+    assert trigforms._same_value(a * S**2 + a * C**2, a)
+    assert not trigforms._same_value(a * S**2 - a * C**2, a)
+    e = a * C**2 + a * S**2 * y + 3 + y * S * C
+    assert_equal_everywhere(compact(e), e)
+    # a faulty rewriting of products (every product negated): what compact returns still equals e
+    monkeypatch.setattr(trigforms._Pass, "mul", lambda self, m: -m if m.has(sp.sin) else m)
+    monkeypatch.setattr(trigforms, "_same_value", lambda a, b: True)
+    assert sp.expand(compact(e) - e) != 0                # without the guard the value would change
+    monkeypatch.undo()
+    monkeypatch.setattr(trigforms._Pass, "mul", lambda self, m: -m if m.has(sp.sin) else m)
+    assert_equal_everywhere(compact(e), e)

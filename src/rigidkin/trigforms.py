@@ -18,6 +18,7 @@ terms, more than ``ANGLES_LIMIT`` angles, or a power of sin or cos above ``DEGRE
 
 from __future__ import annotations
 
+import random
 from functools import lru_cache
 from math import comb
 
@@ -58,7 +59,26 @@ def compact(expr: sp.Basic) -> sp.Basic:
                 break
             allowed = allowed - mixed
         best = _better([out], best)
-    return best if length(best) <= length(expr) else expr
+    if best is expr or length(best) > length(expr):
+        return expr
+    return best if _same_value(best, expr) else expr
+
+
+def _same_value(a: sp.Basic, b: sp.Basic, trials: int = 3) -> bool:
+    """``a = b`` at a few random states in machine arithmetic: a guard on the rewriting (a reading form
+    must never change a value; where it would, the expression is kept as it was)."""
+    from . import algebra      # here, not at the top: algebra imports this module for ``readable``
+
+    rng = random.Random(7)
+    atoms = algebra.state_atoms([a, b])
+    for _ in range(trials):
+        vals = algebra.state_point([a, b], rng, rng.uniform(0.1, 1.0), atoms=atoms)
+        va, vb = algebra.evaluate([a, b], vals)
+        if va != va or vb != vb:            # nan: not decidable here, keep the original
+            return False
+        if abs(va - vb) > 1e-9 * max(1.0, abs(va), abs(vb)):
+            return False
+    return True
 
 
 def length(e: sp.Basic) -> int:
@@ -162,9 +182,10 @@ class _Pass:
             if flips:
                 out = (-1) ** len(flips) * sp.Mul(*[sp.Pow(-f.base, f.exp) if f in flips else f for f in out.args])
         if out.is_Mul and out.could_extract_minus_sign():       # −(−a + b − c)  →  (a − b + c)
-            heavy = [f for f in out.args if _neg_heavy(f)]
-            if heavy:
-                out = sp.Mul(*[-f if f is heavy[0] else f for f in (-out).args]) if (-out).is_Mul else out
+            args = list(out.args)
+            k = next((i for i, f in enumerate(args) if _neg_heavy(f)), None)
+            if k is not None:       # the product unchanged: one factor negated, the whole negated
+                out = sp.Mul(sp.S.NegativeOne, *[-f if i == k else f for i, f in enumerate(args)])
         return out
 
     # -- sums -------------------------------------------------------------------------------------
