@@ -67,7 +67,7 @@ def compact(expr: sp.Basic) -> sp.Basic:
 def _same_value(a: sp.Basic, b: sp.Basic, trials: int = 3) -> bool:
     """``a = b`` at a few random states in machine arithmetic: a guard on the rewriting (a reading form
     must never change a value; where it would, the expression is kept as it was)."""
-    from . import algebra      # here, not at the top: algebra imports this module for ``readable``
+    from . import algebra  # here, not at the top: algebra imports this module for ``readable``
 
     rng = random.Random(7)
     atoms = algebra.state_atoms([a, b])
