@@ -156,7 +156,8 @@ class ModeModel:
         y = np.asarray(y, dtype=float)
         n = 2 * self.layout.n
         f = self.rates(t_, y, p)[:n]
-        h = 1e-7 * (1.0 + float(np.max(np.abs(y[:n])))) / max(float(np.max(np.abs(f))), 1e-300)
+        h = min(1e-7 * (1.0 + float(np.max(np.abs(y[:n])))) / max(float(np.max(np.abs(f))), 1e-300),
+                1e-6 * (1.0 + abs(float(t_))))      # at most a microsecond, as in contact_modes.check
         y2 = y.copy()
         y2[:n] = y[:n] + h * f
         w0, w1 = self.watch_values(t_, y, p), self.watch_values(t_ + h, y2, p)
