@@ -28,12 +28,12 @@ import functools
 import hashlib
 import hmac
 import os
-import stat
 import sys
 import warnings
 from pathlib import Path
 
 from . import __version__
+from .private_files import folder_problem, regular_and_ours, unsafe_ancestor, write_private
 
 MAGIC = b"rigidkin-derivation-2\n"
 SECRET_NAME = "secret.key"
@@ -56,31 +56,6 @@ def cache_dir() -> Path:
     return Path(os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")) / "rigidkin"
 
 
-def _uid() -> int:
-    return os.getuid() if hasattr(os, "getuid") else -1
-
-
-def _why_not(path: Path) -> str:
-    """Why the folder ``path`` is not private to us ("" when it is)."""
-    st = os.lstat(path)
-    if not stat.S_ISDIR(st.st_mode):
-        return f"{path} is not a folder"
-    if st.st_mode & stat.S_IWOTH:
-        return f"{path} is writable by every user of this machine (mode {stat.filemode(st.st_mode)})"
-    if _uid() >= 0 and st.st_uid != _uid():
-        return f"{path} belongs to another user (uid {st.st_uid})"
-    for parent in path.parents:                 # a folder above through which another user could swap it
-        try:
-            pst = os.stat(parent)
-        except OSError:
-            continue
-        if _uid() >= 0 and pst.st_uid not in (0, _uid()):
-            return f"{parent} belongs to another user (uid {pst.st_uid})"
-        if pst.st_mode & stat.S_IWOTH and not pst.st_mode & stat.S_ISVTX:
-            return f"{parent} is writable by every user of this machine"
-    return ""
-
-
 def folder() -> Path | None:
     """The entries' folder, made and checked private; None (with a warning) when it cannot be used safely."""
     base = Path(os.path.realpath(cache_dir()))           # a link is judged by where it leads
@@ -89,11 +64,11 @@ def folder() -> Path | None:
         if not os.path.lexists(base):
             base.parent.mkdir(parents=True, exist_ok=True)
             base.mkdir(mode=0o700, exist_ok=True)
-        why = _why_not(base)
+        why = folder_problem(base) or unsafe_ancestor(base)
         if not why:
             if not os.path.lexists(where):
                 where.mkdir(mode=0o700, exist_ok=True)
-            why = _why_not(where)
+            why = folder_problem(where)
             if not why and os.lstat(where).st_mode & 0o077:
                 os.chmod(where, 0o700)                   # our own folder: make it private
     except OSError as exc:
@@ -105,32 +80,10 @@ def folder() -> Path | None:
     return where
 
 
-def _write_private(path: Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically, mode 0600 (a temporary file of ours renamed over it)."""
-    import tempfile
-
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def _ours_and_private(path: Path, mode_mask: int) -> bool:
-    try:
-        st = os.lstat(path)
-    except OSError:
-        return False
-    return stat.S_ISREG(st.st_mode) and (_uid() < 0 or st.st_uid == _uid()) and not st.st_mode & mode_mask
-
-
 def secret(where: Path) -> bytes:
     """The folder's HMAC key: 32 random bytes, 0600; made anew (voiding every entry) when not exactly that."""
     path = where / SECRET_NAME
-    if _ours_and_private(path, 0o077):
+    if regular_and_ours(path, 0o077):
         try:
             key = path.read_bytes()
         except OSError:
@@ -138,7 +91,7 @@ def secret(where: Path) -> bytes:
         if len(key) == 32:
             return key
     key = os.urandom(32)
-    _write_private(path, key)
+    write_private(path, key)
     return key
 
 
@@ -206,7 +159,7 @@ def _read_signed(path: Path, key: str) -> bytes | None:
     file that is there but not ours to trust is removed)."""
     if not path.exists() and not path.is_symlink():
         return None
-    ok = _ours_and_private(path, 0o022)
+    ok = regular_and_ours(path, 0o022)
     data = b""
     if ok:
         try:
@@ -227,7 +180,7 @@ def _write_signed(path: Path, key: str, payload: bytes) -> bool:
     if len(payload) > MAX_ENTRY:
         return False
     try:
-        _write_private(path, MAGIC + _mac(secret(path.parent), key, payload) + b"\n" + payload)
+        write_private(path, MAGIC + _mac(secret(path.parent), key, payload) + b"\n" + payload)
     except OSError:
         return False
     _prune(path.parent)

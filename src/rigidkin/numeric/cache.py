@@ -23,7 +23,6 @@ import atexit
 import hashlib
 import os
 import shutil
-import stat
 import subprocess
 import sys
 import tempfile
@@ -32,6 +31,7 @@ import warnings
 from pathlib import Path
 
 from ..errors import RigidkinError
+from ..private_files import folder_problem, regular_and_ours, unsafe_ancestor, write_private
 
 
 class CacheError(RigidkinError):
@@ -60,39 +60,6 @@ def compiler() -> str | None:
     return None
 
 
-def _uid() -> int:
-    return os.getuid() if hasattr(os, "getuid") else -1
-
-
-def _private_enough(st: os.stat_result) -> bool:
-    """Owned by us and writable by no one else."""
-    return (_uid() < 0 or st.st_uid == _uid()) and not st.st_mode & (stat.S_IWGRP | stat.S_IWOTH)
-
-
-def _why_not(folder: Path, st: os.stat_result) -> str:
-    if not stat.S_ISDIR(st.st_mode):
-        return f"{folder} is not a folder"
-    if st.st_mode & stat.S_IWOTH:
-        return f"{folder} is writable by every user of this machine (mode {stat.filemode(st.st_mode)})"
-    if _uid() >= 0 and st.st_uid != _uid():
-        return f"{folder} belongs to another user (uid {st.st_uid})"
-    return ""
-
-
-def _unsafe_ancestor(folder: Path) -> str:
-    """A folder above ``folder`` through which another user could swap it, or ""."""
-    for parent in Path(os.path.abspath(folder)).parents:
-        try:
-            st = os.stat(parent)
-        except OSError:
-            continue
-        if _uid() >= 0 and st.st_uid not in (0, _uid()):
-            return f"{parent} belongs to another user (uid {st.st_uid})"
-        if st.st_mode & stat.S_IWOTH and not st.st_mode & stat.S_ISVTX:
-            return f"{parent} is writable by every user of this machine"
-    return ""
-
-
 def checked_folder() -> Path:
     """The cache folder, made and checked private (see the module docstring).
 
@@ -118,7 +85,7 @@ def checked_folder() -> Path:
             raise CacheError(f"the code cache folder {folder} cannot be created ({exc.strerror}).",
                              hint="Set RIGIDKIN_CACHE to a writable folder of your own.") from None
         st = os.lstat(folder)
-    why = _why_not(folder, st) or _unsafe_ancestor(folder)
+    why = folder_problem(folder, st) or unsafe_ancestor(folder)
     if why:
         if explicit:
             raise CacheError(f"{why}, so rigidkin keeps no compiled code there.", where="RIGIDKIN_CACHE",
@@ -144,14 +111,6 @@ def private_folder() -> Path:
     return _PRIVATE[0]
 
 
-def _regular_and_ours(path: Path) -> bool:
-    try:
-        st = os.lstat(path)
-    except OSError:
-        return False
-    return stat.S_ISREG(st.st_mode) and _private_enough(st)
-
-
 def _sha(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
 
@@ -163,25 +122,13 @@ def _record(digest: str, lib: bytes) -> str:
 def _trusted(folder: Path, digest: str, source: str) -> bool:
     """True when the cached library of ``digest`` may be loaded (see the module docstring)."""
     paths = [folder / f"rk_{digest}{ext}" for ext in (".so", ".c", ".sha256")]
-    if not all(_regular_and_ours(p) for p in paths):
+    if not all(regular_and_ours(p) for p in paths):
         return False
     try:
         lib, src, rec = (p.read_bytes() for p in paths)
     except OSError:
         return False
     return src == source.encode() and rec.decode(errors="replace") == _record(digest, lib)
-
-
-def _write_private(path: Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically, mode 0600 (a file of ours replaced, never one of another's)."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def flags(size: int) -> list[str]:
@@ -231,7 +178,7 @@ def build(source: str, cdef: str, error=CacheError):
             for ext, data in ((".c", source.encode()), (".so", lib), (".sha256", _record(digest, lib).encode())):
                 path = folder / f"rk_{digest}{ext}"
                 try:
-                    _write_private(path, data)
+                    write_private(path, data)
                 except OSError:                           # not ours to replace: use a private copy
                     return _load_private(digest, source, lib, cdef)
             if not _trusted(folder, digest, source):      # replaced under us: load a private copy
@@ -242,7 +189,7 @@ def build(source: str, cdef: str, error=CacheError):
 def _load_private(digest: str, source: str, lib: bytes, cdef: str):
     folder = private_folder()
     for ext, data in ((".c", source.encode()), (".so", lib), (".sha256", _record(digest, lib).encode())):
-        _write_private(folder / f"rk_{digest}{ext}", data)
+        write_private(folder / f"rk_{digest}{ext}", data)
     return _load(folder / f"rk_{digest}.so", digest, cdef)
 
 

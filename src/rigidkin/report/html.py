@@ -93,32 +93,36 @@ def _math(m: Math, display: bool) -> str:
     return mathml(m.obj, display=display)
 
 
-def _cell(c) -> str:
-    return _math(c, False) if isinstance(c, Math) else _esc(c)
+def block_html(b, math=None, heading: str = "h3", anchors: bool = True) -> str:
+    """One block of a document as HTML; ``math(m, display)`` writes a formula (MathML by default),
+    ``heading`` is the step titles' element, ``anchors`` gives figures an id to link to."""
+    math = math or _math
 
+    def cell(c) -> str:
+        return math(c, False) if isinstance(c, Math) else _esc(c)
 
-def _block(b) -> str:
     if isinstance(b, Paragraph):
         return f"<p>{_esc(b.text)}</p>"
     if isinstance(b, Equations):
-        return '<div class="eqs">' + "".join(_math(m, True) for m in b.items) + "</div>"
+        return '<div class="eqs">' + "".join(math(m, True) for m in b.items) + "</div>"
     if isinstance(b, Step):
         law = f'<span class="law">{_esc(b.law)}</span>' if b.law else ""
-        eqs = '<div class="eqs">' + "".join(_math(m, True) for m in b.equations) + "</div>" if b.equations else ""
+        eqs = '<div class="eqs">' + "".join(math(m, True) for m in b.equations) + "</div>" if b.equations else ""
         why = f'<p class="why">{_esc(b.why)}</p>' if b.why else ""
-        return f'<div class="step"><h3>{_esc(b.title)}{law}</h3>{eqs}{why}</div>'
+        return f'<div class="step"><{heading}>{_esc(b.title)}{law}</{heading}>{eqs}{why}</div>'
     if isinstance(b, Table):
         head = "".join(f"<th>{_esc(c)}</th>" for c in b.columns)
-        rows = "".join("<tr>" + "".join(f"<td>{_cell(c)}</td>" for c in r) + "</tr>" for r in b.rows)
+        rows = "".join("<tr>" + "".join(f"<td>{cell(c)}</td>" for c in r) + "</tr>" for r in b.rows)
         cap = f"<caption>{_esc(b.caption)}</caption>" if b.caption else ""
         return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>"
     if isinstance(b, Figure):
         data = base64.b64encode(b.png).decode("ascii")
-        return (f'<figure id="fig-{_esc(b.key)}"><img src="data:image/png;base64,{data}" alt="{_esc(b.alt)}">'
+        fid = f' id="fig-{_esc(b.key)}"' if anchors else ""
+        return (f'<figure{fid}><img src="data:image/png;base64,{data}" alt="{_esc(b.alt)}">'
                 f"<figcaption>{_esc(b.caption)}</figcaption></figure>")
     if isinstance(b, Animation):
-        return (f'<figure id="animation-{_esc(b.key)}" class="animation-figure">{offline_player(b.html)}'
-                f"<figcaption>{_esc(b.caption)}</figcaption></figure>")
+        aid = f' id="animation-{_esc(b.key)}" class="animation-figure"' if anchors else ""
+        return f"<figure{aid}>{offline_player(b.html)}<figcaption>{_esc(b.caption)}</figcaption></figure>"
     raise TypeError(f"unknown block {b!r}")
 
 
@@ -127,7 +131,7 @@ def to_html(doc: Document) -> str:
     nav = "".join(f'<a href="#{_esc(s.key)}">{i + 1}. {_esc(s.title)}</a>' for i, s in enumerate(doc.sections))
     body = []
     for i, s in enumerate(doc.sections):
-        blocks = "\n".join(_block(b) for b in s.blocks)
+        blocks = "\n".join(block_html(b) for b in s.blocks)
         body.append(f'<section id="{_esc(s.key)}"><h2>{i + 1}. {_esc(s.title)}</h2>\n{blocks}\n</section>')
     scripts = any(isinstance(b, Animation) for s in doc.sections for b in s.blocks)
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"

@@ -14,15 +14,14 @@ the fragment is marked for MathJax to leave alone (a ``$`` in a description stay
 
 from __future__ import annotations
 
-import base64
 import re
 
 from sympy.physics.vector import dynamicsymbols
 
 from ..textsafe import html_text
-from .document import Animation, Equations, Figure, Math, Paragraph, Step, Table, answers_blocks, inputs_tables
+from .document import Math, Paragraph, Table, answers_blocks, inputs_tables
 from .html import _math as _mathml
-from .html import offline_player
+from .html import block_html as _report_block
 from .notation import latex, latex_condition
 
 t = dynamicsymbols._t
@@ -35,7 +34,8 @@ _JUPYTER = (".jp-RenderedHTMLCommon", ".rendered_html")
 STYLE = ("<style>.rigidkin table{border-collapse:collapse;margin:.4em 0}.rigidkin th,.rigidkin td{border:1px "
          "solid #ccc;padding:.2em .5em;text-align:left;vertical-align:top}.rigidkin caption{text-align:left;"
          "font-weight:bold}.rigidkin .step{margin:.4em 0}.rigidkin .why{font-style:italic;color:#444}"
-         ".rigidkin .eqs{overflow-x:auto}.rigidkin .rk-tex{display:none}"
+         ".rigidkin .eqs{overflow-x:auto}.rigidkin .law{font-size:smaller;font-weight:normal;margin-left:.6em}"
+         ".rigidkin .rk-tex{display:none}"
          + "".join(f"{j} .rigidkin .rk-tex{{display:inline}}{j} .rigidkin div.rk-tex{{display:block}}"
                    f"{j} .rigidkin .rk-mathml{{display:none}}" for j in _JUPYTER)
          + "</style>")
@@ -59,33 +59,9 @@ def _math(m: Math, display: bool) -> str:
     return f'<span class="rk-tex {PROCESS}">\\({source}\\)</span><span class="rk-mathml">{_mathml(m, False)}</span>'
 
 
-def _cell(c) -> str:
-    return _math(c, False) if isinstance(c, Math) else _esc(c)
-
-
 def block_html(b) -> str:
-    """One block of a document as an HTML fragment for a notebook."""
-    if isinstance(b, Paragraph):
-        return f"<p>{_esc(b.text)}</p>"
-    if isinstance(b, Equations):
-        return '<div class="eqs">' + "".join(_math(m, True) for m in b.items) + "</div>"
-    if isinstance(b, Step):
-        law = f' <small>{_esc(b.law)}</small>' if b.law else ""
-        eqs = '<div class="eqs">' + "".join(_math(m, True) for m in b.equations) + "</div>" if b.equations else ""
-        why = f'<p class="why">{_esc(b.why)}</p>' if b.why else ""
-        return f'<div class="step"><h4>{_esc(b.title)}{law}</h4>{eqs}{why}</div>'
-    if isinstance(b, Table):
-        head = "".join(f"<th>{_esc(c)}</th>" for c in b.columns)
-        rows = "".join("<tr>" + "".join(f"<td>{_cell(c)}</td>" for c in r) + "</tr>" for r in b.rows)
-        cap = f"<caption>{_esc(b.caption)}</caption>" if b.caption else ""
-        return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>"
-    if isinstance(b, Figure):
-        data = base64.b64encode(b.png).decode("ascii")
-        return (f'<figure><img src="data:image/png;base64,{data}" alt="{_esc(b.alt)}">'
-                f"<figcaption>{_esc(b.caption)}</figcaption></figure>")
-    if isinstance(b, Animation):
-        return f"<figure>{offline_player(b.html)}<figcaption>{_esc(b.caption)}</figcaption></figure>"
-    raise TypeError(f"unknown block {b!r}")
+    """One block of a document as an HTML fragment for a notebook (TeX and MathML, the report's layout)."""
+    return _report_block(b, _math, heading="h4", anchors=False)
 
 
 def fragment(title: str, blocks) -> str:
