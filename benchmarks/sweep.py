@@ -184,22 +184,34 @@ args = build_parser().parse_args(sys.argv[1:])
 from rigidkin.commands import sweep as cmd
 vary = {n: cmd.parse_axis(v, n) for n, v in cmd._pairs(args.param, "--param").items()}
 mark("imports and options")
-from rigidkin.commands import common
-opener = getattr(common, "open_problem", None)
-problem = opener(args) if opener else None
-system = problem.system if problem else common.load_system(args.problem)[0]
-mark("problem read" + (" (derivation cache hit)" if getattr(problem, "hit", False) else ""))
-system.solve()
-from rigidkin.numeric.codegen import compile_kernel, kernel
-model = compile_kernel(kernel(system))
-mark("derivation, kernel and compiled library")
-from rigidkin.numeric.sweep import sweep
-res = sweep(system, vary, stop_at=args.stop_at or None, workers=args.threads)
-mark("sweep (integration)")
-res.write(args.output)
-mark("table written")
-if problem is not None and hasattr(problem, "save"):
-    problem.save()
+rec = None
+if hasattr(cmd, "_from_record"):             # the numeric record (a repeated sweep): no sympy, nothing derived
+    from rigidkin.derivation_cache import read_kept
+    from rigidkin.numeric.sweep_record import SUFFIX, run
+    rec = read_kept(args.problem, cmd._record_options(args, {}), SUFFIX)
+if rec is not None:
+    mark("numeric record read (signed JSON)")
+    res = run(rec, vary, {}, {}, args.t_end, args.rtol, args.atol, args.threads, args.chunk)
+    mark("runs planned, compiled library loaded, 10^5 integrations")
+    res.write(args.output)
+    mark("table written")
+else:
+    from rigidkin.commands import common
+    opener = getattr(common, "open_problem", None)
+    problem = opener(args) if opener else None
+    system = problem.system if problem else common.load_system(args.problem)[0]
+    mark("problem read" + (" (derivation cache hit)" if getattr(problem, "hit", False) else ""))
+    system.solve()
+    from rigidkin.numeric.codegen import compile_kernel, kernel
+    model = compile_kernel(kernel(system))
+    mark("derivation, kernel and compiled library")
+    from rigidkin.numeric.sweep import sweep
+    res = sweep(system, vary, stop_at=args.stop_at or None, workers=args.threads)
+    mark("sweep (integration)")
+    res.write(args.output)
+    mark("table written")
+    if problem is not None and hasattr(problem, "save"):
+        problem.save()
 print(json.dumps([(n, c1 - c0, w1 - w0) for (_, c0, w0), (n, c1, w1) in zip(marks, marks[1:])]))
 """
 

@@ -269,10 +269,10 @@ def _output_name(key: str, options) -> str:
     return key + "-" + hashlib.sha256(repr(tuple(options)).encode()).hexdigest()[:24]
 
 
-def read_output(problem: str, options, use: bool = True) -> dict | None:
-    """What a command printed for ``problem`` with these output ``options`` (a tuple of what changes the
-    output), when it was kept: {"text": ..., "status": ...}; None otherwise.  Reads no derivation (and
-    imports no sympy): a repeated ``rigidkin solve`` prints at once."""
+def read_kept(problem: str, options, suffix: str, use: bool = True) -> dict | None:
+    """A JSON record kept for ``problem`` under these ``options`` (a tuple of what changes it) — what a
+    command printed (``.out``), a sweep's numeric record (``.rec``) — when it is certainly ours; None
+    otherwise.  Reads no derivation and imports no sympy."""
     if not use or disabled_by_env():
         return None
     key = key_of(problem)
@@ -280,7 +280,7 @@ def read_output(problem: str, options, use: bool = True) -> dict | None:
     if where is None:
         return None
     name = _output_name(key, options)
-    payload = _read_signed(where / f"{name}.out", name)
+    payload = _read_signed(where / f"{name}{suffix}", name)
     if payload is None:
         return None
     import json
@@ -289,13 +289,11 @@ def read_output(problem: str, options, use: bool = True) -> dict | None:
         out = json.loads(payload.decode())
     except ValueError:
         return None
-    if isinstance(out, dict) and isinstance(out.get("text"), str) and isinstance(out.get("status"), int):
-        return out
-    return None
+    return out if isinstance(out, dict) else None
 
 
-def write_output(problem: str, options, text: str, status: int, use: bool = True) -> bool:
-    """Keep what a command printed (see :func:`read_output`)."""
+def write_kept(problem: str, options, suffix: str, record: dict, use: bool = True) -> bool:
+    """Keep a JSON record for ``problem`` under these ``options`` (see :func:`read_kept`)."""
     if not use or disabled_by_env():
         return False
     key = key_of(problem)
@@ -305,12 +303,31 @@ def write_output(problem: str, options, text: str, status: int, use: bool = True
     import json
 
     name = _output_name(key, options)
-    return _write_signed(where / f"{name}.out", name, json.dumps({"text": text, "status": status}).encode())
+    try:
+        payload = json.dumps(record, allow_nan=False).encode()
+    except (TypeError, ValueError):
+        return False
+    return _write_signed(where / f"{name}{suffix}", name, payload)
+
+
+def read_output(problem: str, options, use: bool = True) -> dict | None:
+    """What a command printed for ``problem`` with these output ``options`` (a tuple of what changes the
+    output), when it was kept: {"text": ..., "status": ...}; None otherwise.  A repeated ``rigidkin solve``
+    prints at once."""
+    out = read_kept(problem, options, ".out", use)
+    if out is not None and isinstance(out.get("text"), str) and isinstance(out.get("status"), int):
+        return out
+    return None
+
+
+def write_output(problem: str, options, text: str, status: int, use: bool = True) -> bool:
+    """Keep what a command printed (see :func:`read_output`)."""
+    return write_kept(problem, options, ".out", {"text": text, "status": status}, use)
 
 
 def _prune(where: Path) -> None:
     try:
-        entries = [e for e in os.scandir(where) if e.name.endswith((".pkl", ".out"))
+        entries = [e for e in os.scandir(where) if e.name.endswith((".pkl", ".out", ".rec"))
                    and e.is_file(follow_symlinks=False)]
         if len(entries) > MAX_ENTRIES:
             entries.sort(key=lambda e: e.stat(follow_symlinks=False).st_mtime)

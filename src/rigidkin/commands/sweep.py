@@ -101,8 +101,6 @@ def parse_axis(text: str, where: str):
 
 
 def run(args) -> int:
-    from ..numeric.figure import figure_formats
-    from ..numeric.sweep import check_size, sweep
     from ..numeric.tables import require_parquet, table_format
     from ..outfile import check_target
     from ..textsafe import terminal_safe
@@ -113,30 +111,40 @@ def run(args) -> int:
     if table_format(args.output) == "parquet":
         require_parquet(args.output, "the sweep table")        # said before anything is derived or run
     if args.plot:
+        from ..numeric.figure import figure_formats
+
         check_target(args.plot, "the figure", figure_formats())
     vary = {name: parse_axis(v, f"--param {name}") for name, v in _pairs(args.param, "--param").items()}
-    derived = guarded(args, open_problem, args)
-    system = derived.system
-    runs = check_size(system, vary, events=len(args.stop_at) + len(args.record) + 2 * len(system.constraints) + 2)
-    set_step(f"Sweeping {runs:,} runs")
+    sets, initial, mode = _pairs(args.set, "--set"), _pairs(args.initial, "--initial"), _pairs(args.mode, "--mode")
     scheduler = args.scheduler or ("local" if args.workers else None)
-    progress = _Progress(sys.stderr.isatty())
     start = time.perf_counter()
-    try:
-        res = sweep(system, vary, params=_pairs(args.set, "--set"), initial=_pairs(args.initial, "--initial"),
-                    t_end=args.t_end, stop_at=args.stop_at or None, record=args.record,
-                    mode=_pairs(args.mode, "--mode"), rtol=args.rtol, atol=args.atol,
-                    workers=args.workers if scheduler else args.threads, scheduler=scheduler, chunk=args.chunk,
-                    backend=args.backend, progress=progress)
-    finally:
-        progress.close()
+    res = _from_record(args, vary, sets, initial, mode) if scheduler is None and args.backend != "numpy" else None
+    if res is None:
+        from ..numeric.sweep import check_size, sweep
+
+        derived = guarded(args, open_problem, args)
+        system = derived.system
+        runs = check_size(system, vary, events=len(args.stop_at) + len(args.record) + 2 * len(system.constraints)
+                          + 2)
+        set_step(f"Sweeping {runs:,} runs")
+        progress = _Progress(sys.stderr.isatty())
+        start = time.perf_counter()
+        try:
+            res = sweep(system, vary, params=sets, initial=initial, t_end=args.t_end, stop_at=args.stop_at or None,
+                        record=args.record, mode=mode, rtol=args.rtol, atol=args.atol,
+                        workers=args.workers if scheduler else args.threads, scheduler=scheduler, chunk=args.chunk,
+                        backend=args.backend, progress=progress, keep_record=not args.no_cache)
+        finally:
+            progress.close()
+        derived.save()
+        if res.record is not None:
+            _keep_record(args, mode, res.record)
     elapsed = time.perf_counter() - start
-    derived.save()
     set_step("Writing the table")
     res.write(args.output)
     say = _safe_print(terminal_safe)
     counts = _status_counts(res.status)
-    say(f"{len(res)} runs of {system.name} ({res.backend}) in {elapsed:.3g} s: "
+    say(f"{len(res)} runs of {res.system_name} ({res.backend}) in {elapsed:.3g} s: "
         + ", ".join(f"{v} {k}" for k, v in counts.items()))
     for k, name in enumerate(res.result.event_names):
         hit = int((~_isnan(res.result.event_t[:, k])).sum())
@@ -149,6 +157,31 @@ def run(args) -> int:
     if bad:
         say(f"rigidkin: warning: some runs ended early ({', '.join(bad)}); see the status column.", file=sys.stderr)
     return 0
+
+
+def _record_options(args, mode) -> tuple:
+    from ..numeric.sweep_record import options_key
+
+    return options_key(mode, args.stop_at, args.record, args.backend)
+
+
+def _from_record(args, vary, sets, initial, mode):
+    """The sweep from its numeric record when a previous sweep of this problem kept one (no sympy imported,
+    nothing derived); None: take the full route."""
+    from ..derivation_cache import read_kept
+    from ..numeric.sweep_record import SUFFIX, run
+
+    rec = read_kept(args.problem, _record_options(args, mode), SUFFIX, use=not args.no_cache)
+    if rec is None:
+        return None
+    return run(rec, vary, sets, initial, args.t_end, args.rtol, args.atol, args.threads, args.chunk)
+
+
+def _keep_record(args, mode, record: dict) -> None:
+    from ..derivation_cache import write_kept
+    from ..numeric.sweep_record import SUFFIX
+
+    write_kept(args.problem, _record_options(args, mode), SUFFIX, record, use=not args.no_cache)
 
 
 def _status_counts(status) -> dict[str, int]:

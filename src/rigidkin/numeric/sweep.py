@@ -15,7 +15,6 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import sympy as sp
@@ -25,6 +24,8 @@ from ..errors import InputError, RigidkinError
 from . import batch
 from .codegen import CompiledModel, Kernel, compile_kernel, kernel
 from .state import StateLayout, parameter_vector, quantity
+from .sweep_plan import _vector_eval, axis, axis_length, check_runs, complete  # noqa: F401  (public through here)
+from .sweep_result import SweepResult, status_text  # noqa: F401  (public through here)
 
 t = dynamicsymbols._t
 
@@ -39,130 +40,7 @@ class StopAt:
     terminal: bool
 
 
-@dataclass
-class SweepResult:
-    """The runs of a sweep: their inputs (``columns`` of the grid) and the batch result."""
-
-    system_name: str
-    layout: StateLayout
-    inputs: dict[str, np.ndarray]          # varied parameters and initial values, per run
-    params: np.ndarray                     # runs × n_p (every parameter)
-    y0: np.ndarray                         # runs × 2n
-    result: batch.BatchResult
-    backend: str
-
-    def __len__(self) -> int:
-        return len(self.result)
-
-    @property
-    def status(self) -> np.ndarray:
-        return self.result.status
-
-    def event_time(self, name: str) -> np.ndarray:
-        return self.result.event_t[:, self._event(name)]
-
-    def event_state(self, name: str, slot: str | None = None) -> np.ndarray:
-        y = self.result.event_y[:, self._event(name)]
-        return y if slot is None else y[:, self.layout.index(slot)]
-
-    def _event(self, name):
-        try:
-            return self.result.event_names.index(name)
-        except ValueError:
-            raise InputError(f"'{name}' is not an event of this sweep.",
-                             hint=f"Events: {', '.join(self.result.event_names)}.") from None
-
-    def columns(self) -> dict[str, np.ndarray]:
-        """The table: one column per input, parameter, event time and state, final time and state, status."""
-        cols: dict[str, np.ndarray] = {"run": np.arange(len(self))}
-        for j, name in enumerate(self.layout.parameters):
-            cols[name] = self.params[:, j]
-        for name, values in self.inputs.items():
-            if name not in cols:
-                cols[name] = values
-        for k, ev in enumerate(self.result.event_names):
-            cols[f"{ev}: t"] = self.result.event_t[:, k]
-            for i, lab in enumerate(self.layout.labels):
-                cols[f"{ev}: {lab}"] = self.result.event_y[:, k, i]
-        cols["end: t"] = self.result.t_end
-        for i, lab in enumerate(self.layout.labels):
-            cols[f"end: {lab}"] = self.result.y_end[:, i]
-        cols["status"] = status_text(self.result.status)
-        return cols
-
-    def metadata(self) -> dict[str, str]:
-        """What a Parquet table keeps beside its columns: the system, the backend, the events."""
-        return {"rigidkin.system": self.system_name, "rigidkin.backend": self.backend,
-                "rigidkin.events": "\n".join(self.result.event_names)}
-
-    def write(self, path) -> Path:
-        """Write the table to ``path``: Parquet for ``.parquet``/``.pq`` (needs pyarrow), CSV otherwise; whole or
-        not at all (OutputError: why not).  See :mod:`rigidkin.numeric.tables`."""
-        from .tables import write_table
-
-        return write_table(self.columns(), path, "the sweep table", self.metadata())
-
-    def to_csv(self, path) -> Path:
-        """Write the table as CSV (numbers as ``repr`` writes them, missing values empty, names neutralised)."""
-        from .tables import write_csv
-
-        return write_csv(self.columns(), path, "the sweep table")
-
-    def to_parquet(self, path) -> Path:
-        """Write the table as Parquet (needs pyarrow; missing values as nulls)."""
-        from .tables import write_parquet
-
-        return write_parquet(self.columns(), path, "the sweep table", self.metadata())
-
-    def plot(self, path, x: str | None = None, y: str | None = None) -> Path:
-        """A figure of one table column against another (default: the first event's time against the first input)."""
-        from matplotlib.figure import Figure
-
-        from .figure import save_figure
-
-        cols = self.columns()
-        x = x or (next(iter(self.inputs)) if self.inputs else "run")
-        if y is None:
-            y = f"{self.result.event_names[0]}: t" if self.result.event_names else "end: t"
-        for c in (x, y):
-            if c not in cols:
-                raise InputError(f"'{c}' is not a column of the sweep table.", hint=f"Columns: {', '.join(cols)}.")
-        fig = Figure(figsize=(7, 4.5), layout="constrained")
-        ax = fig.subplots()
-        xs, ys = np.asarray(cols[x], dtype=float), np.asarray(cols[y], dtype=float)
-        order = np.argsort(xs, kind="stable")
-        ax.plot(xs[order], ys[order], ".", ms=3 if len(xs) > 200 else 6)
-        ax.set_xlabel(x)
-        ax.set_ylabel(y)
-        ax.set_title(f"{self.system_name}: {len(self)} runs")
-        ax.grid(alpha=0.3)
-        return save_figure(fig, path, dpi=120)
-
-
-def status_text(codes: np.ndarray) -> np.ndarray:
-    """The status of each run in words (:data:`rigidkin.numeric.batch.STATUS`), as an object array."""
-    codes = np.asarray(codes).reshape(-1)
-    if not codes.size:
-        return np.empty(0, dtype=object)
-    u, inverse = np.unique(codes, return_inverse=True)
-    words = np.array([batch.STATUS.get(int(c), f"status {int(c)}") for c in u.tolist()], dtype=object)
-    return words[inverse.reshape(-1)]
-
-
 # ---------------------------------------------------------------------------------------------------
-def axis(spec) -> np.ndarray:
-    """Values of a swept quantity: an array, or ``(start, stop, count)`` (inclusive, evenly spaced)."""
-    if isinstance(spec, tuple) and len(spec) == 3:
-        start, stop, count = spec
-        if int(count) != count or count < 1:
-            raise InputError(f"the count of a sweep axis must be a whole number ≥ 1, not {count}.")
-        return np.linspace(float(start), float(stop), int(count))
-    arr = np.atleast_1d(np.asarray(spec, dtype=float))
-    if arr.ndim != 1 or not np.all(np.isfinite(arr)):
-        raise InputError("the values of a sweep axis must be finite numbers.")
-    return arr
-
-
 def event_aliases(system, mode) -> dict[str, str]:
     """The names simulate gives contacts' events (``contact A opens``) → the reaction that reaches zero (``N_A``)."""
     from ..mode import setup_mode
@@ -198,32 +76,14 @@ def _mode_events(system, mode) -> list[str]:
     return [str(r) for r, _ in setup_mode(system, mode).unilateral]
 
 
-def axis_length(spec) -> int:
-    """How many values an axis spec gives, without making them."""
-    if isinstance(spec, tuple) and len(spec) == 3:
-        try:
-            return max(int(spec[2]), 0)
-        except (TypeError, ValueError, OverflowError):
-            raise InputError(f"the count of a sweep axis must be a whole number ≥ 1, not {spec[2]!r}.") from None
-    return int(np.size(spec))
-
-
 def check_size(system, vary: Mapping | None, grid: bool = True, events: int = 4) -> int:
     """The number of runs of a sweep, refused (InputError) when its table would not fit in memory.
 
     Every run keeps its parameters, inputs, initial and final states, and each event's time and
     state (``events``: how many events, estimated); see :data:`rigidkin.limits.MEMORY_LIMIT`.
     """
-    from ..limits import check_memory, sweep_bytes
-
     lengths = [axis_length(spec) for spec in (vary or {}).values()]
-    runs = (math.prod(lengths) if grid else max(lengths)) if lengths else 1
-    n, n_p = len(system.coordinate_info), len(system.parameter_info)
-    per_run = 3 * n_p + 2 * len(lengths) + 6 * 2 * n + 2 * events * (2 * n + 1) + 8
-    check_memory(sweep_bytes(runs, per_run), f"a sweep of {runs:,} runs", "sweep",
-                 hint="Use fewer values per axis (or fewer axes), or split the sweep into several and join the "
-                      "tables.")
-    return runs
+    return check_runs(lengths, len(system.coordinate_info), len(system.parameter_info), events, grid)
 
 
 def plan(system, vary: Mapping | None = None, params: Mapping | None = None, initial: Mapping | None = None,
@@ -234,7 +94,6 @@ def plan(system, vary: Mapping | None = None, params: Mapping | None = None, ini
     ``grid`` every combination is a run, otherwise the axes are zipped (equal lengths).  The size is
     checked (:func:`check_size`) before anything is allocated.
     """
-    from ..mode import setup_mode
 
     check_size(system, vary, grid, events)
     layout = StateLayout.of(system)
@@ -280,33 +139,31 @@ def plan(system, vary: Mapping | None = None, params: Mapping | None = None, ini
             given.add(i)
     if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
         raise InputError("the sweep's values are not all finite numbers.", where="sweep")
-    # dependent coordinates and rates from the constraints of the mode, run by run (vectorised)
-    red = setup_mode(system, dict(mode or {})).reduction
-    args = layout.arguments()
-    for q, expr in red.coord_map.items():
-        i = layout.coordinates.index(q)
-        if i not in given:
-            Y[:, i] = _vector_eval(args, layout.to_plain(expr), [np.zeros(runs), *Y.T, *P.T], runs)
-    cols = [np.zeros(runs), *Y.T, *P.T]
-    for q in red.dependent:
-        i = layout.coordinates.index(q)
-        if n + i not in given:
-            Y[:, n + i] = _vector_eval(args, layout.to_plain(red.rate_map[q.diff(t)]), cols, runs)
+    complete(Y, P, relations(system, mode, layout), given, layout.arguments())
     return inputs, P, Y
 
 
-#: lambdify's namespace: numpy's own functions (``modules="numpy"`` would star-import numpy's every submodule,
-#: a tenth of a second at each command's start).
-_NUMPY = ({"numpy": np}, np)
+def relations(system, mode, layout: StateLayout) -> tuple[list, list]:
+    """The constraints of the mode as (state slot, expression) pairs: the dependent coordinates, then the
+    dependent rates, each an expression of the layout's arguments (t, q, u, p) — a tree of
+    :mod:`rigidkin.numeric.exprtree` where it can be one, else the sympy expression."""
+    from ..mode import setup_mode
+    from .exprtree import NotEncodable, encode
 
+    red = setup_mode(system, dict(mode or {})).reduction
+    index = {a: i for i, a in enumerate(layout.arguments())}
 
-def _vector_eval(args, expr, columns, runs) -> np.ndarray:
-    """``expr`` (of the layout's arguments) at every run at once."""
-    from .codesafe import safe_lambdify
+    def tree(expr):
+        plain = layout.to_plain(expr)
+        try:
+            return encode(plain, index)
+        except NotEncodable:
+            return plain
 
-    f = safe_lambdify(args, [expr], modules=list(_NUMPY), cse=False, where="sweep")
-    with np.errstate(all="ignore"):
-        return np.broadcast_to(np.asarray(f(*columns)[0], dtype=float), (runs,)).copy()
+    n = layout.n
+    coords = [(layout.coordinates.index(q), tree(expr)) for q, expr in red.coord_map.items()]
+    rates = [(n + layout.coordinates.index(q), tree(red.rate_map[q.diff(t)])) for q in red.dependent]
+    return coords, rates
 
 
 def _condition_events(system, mode, regime: int, layout: StateLayout) -> list[StopAt]:
@@ -345,7 +202,7 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
           mode: Mapping | None = None, regime: int | None = None, grid: bool = True, rtol: float = 1e-10,
           atol: float = 1e-12, max_step: float = np.inf, workers: int | None = None, scheduler=None,
           chunk: int | None = None, form: str = "auto", backend: str = "auto",
-          progress: Callable[[int, int], None] | None = None) -> SweepResult:
+          progress: Callable[[int, int], None] | None = None, keep_record: bool = False) -> SweepResult:
     """Simulate ``system`` for every combination of ``vary`` (parameters and initial values).
 
     One mode (``mode``, default: every contact closed) is integrated.  Each run starts in the regime
@@ -354,7 +211,8 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
     that end a run (default: a unilateral contact stops pushing, the regime's sign condition or
     another validity condition fails — the mode or regime ends there); ``record``: further events
     recorded without stopping.  ``scheduler``: a Dask scheduler address, a ``distributed.Client``,
-    or ``"local"`` (a LocalCluster of ``workers`` processes).
+    or ``"local"`` (a LocalCluster of ``workers`` processes).  ``keep_record``: make the sweep's numeric
+    record (``result.record``, :mod:`rigidkin.numeric.sweep_record`) where one can answer a repeat.
 
     >>> import numpy as np
     >>> from rigidkin import examples
@@ -378,12 +236,13 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
     stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or [])
     inputs, P, Y = plan(system, vary, params, initial, mode, grid,
                         events=len(stops) + len(record) + 2 * len(system.constraints) + 2)
+    n_regimes = None
     if regime is not None or form == "implicit":
         which = np.full(len(Y), regime or 0)
     else:
         n_regimes = len(system.solve(mode=mode).regimes)
         which = np.zeros(len(Y), dtype=int) if n_regimes == 1 else _assign_regimes(system, mode, layout, Y, P)
-    parts, used, names = {}, "c", None
+    parts, used, names, kept = {}, "c", None, None
     groups = [int(r) for r in np.unique(which) if r >= 0] or [0]
     done = 0
     for r in groups:
@@ -414,6 +273,8 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
             if sub_progress:
                 sub_progress(len(idx), len(idx))
             used = model.backend
+            if keep_record and n_regimes == 1 and used == "c":
+                kept = _record(system, mode, layout, k, bev)
         else:
             from .batch_dask import integrate_dask
 
@@ -422,7 +283,19 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
             used = "c (dask)"
         done += len(idx)
         parts[r] = (idx, res)
-    return SweepResult(system.name, layout, inputs, P, Y, _merge(parts, Y, names or ()), used)
+    out = SweepResult(system.name, layout, inputs, P, Y, _merge(parts, Y, names or ()), used)
+    out.record = kept
+    return out
+
+
+def _record(system, mode, layout: StateLayout, k: Kernel, events) -> dict | None:
+    """The numeric record of this sweep's model (see :mod:`rigidkin.numeric.sweep_record`)."""
+    from .batch import INTEGRATOR_C, INTEGRATOR_CDEF
+    from .csource import _CDEF, c_source
+    from .sweep_record import make
+
+    return make(system, layout, relations(system, mode, layout), events, c_source(k) + INTEGRATOR_C,
+                _CDEF + INTEGRATOR_CDEF)
 
 
 def _merge(parts: dict, Y: np.ndarray, names: tuple) -> batch.BatchResult:
