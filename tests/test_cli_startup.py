@@ -58,3 +58,23 @@ def test_completion_of_subcommands_options_and_examples(tmp_path):
     words = _complete("rigidkin solve ", tmp_path)
     assert {"ladder", "collar-rod", "my_card.toml"} <= set(words) and "notes.txt" not in words
     assert _complete("rigidkin check lad", tmp_path) == ["ladder"]
+
+
+def test_units_load_without_dask_and_keep_pints_definitions(tmp_path):
+    """pint's probe for dask is answered 'absent' (0.35 s), dask still imports afterwards where installed,
+    and pint's parsed definitions are kept in the private cache folder (the next registry is faster)."""
+    env = {**os.environ, "RIGIDKIN_CACHE": str(tmp_path / "cache")}
+    env.pop("RIGIDKIN_NO_CACHE", None)
+    code = ("import sys, importlib.util\nfrom rigidkin.units import registry, to_si\nr = registry()\n"
+            "assert abs(to_si('30 cm', 'm', 'x') - 0.3) < 1e-15\n"
+            "print('dask' in sys.modules)\n"
+            "if importlib.util.find_spec('dask'):\n    import dask\n    print('dask imports', bool(dask.__version__))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, env=env,
+                         check=True).stdout.split("\n")
+    assert out[0] == "False"
+    import importlib.util
+
+    if importlib.util.find_spec("dask"):
+        assert out[1] == "dask imports True"
+    kept = tmp_path / "cache" / "pint"
+    assert kept.is_dir() and any(kept.rglob("*")) and (kept.stat().st_mode & 0o077) == 0
