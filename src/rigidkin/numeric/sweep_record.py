@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import re
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -140,7 +141,7 @@ class _Loaded:
 
     def __init__(self, ffi, lib, n_p: int):
         self.ffi, self.lib = ffi, lib
-        self.kernel = type("KernelSize", (), {"np_": n_p})()
+        self.kernel = SimpleNamespace(np_=n_p)      # what integrate reads of a kernel: the parameter count
 
 
 def run(rec: dict, vary: dict, params: dict, initial: dict, t_end: float, rtol: float, atol: float,
