@@ -31,6 +31,9 @@ def time_limit(seconds: float | None, on_timeout=None):
         return
 
     def handler(signum, frame):
+        # again in 0.1 s, should this exception be swallowed where Python ignores exceptions (a gc callback,
+        # a __del__): the limit still ends the block (the timer is cleared when the block is left)
+        signal.setitimer(signal.ITIMER_REAL, 0.1)
         raise on_timeout() if on_timeout is not None else TimeoutError(f"gave up after {seconds} s")
 
     start = time.monotonic()
