@@ -24,7 +24,7 @@ from sympy.physics.vector import Vector, dynamicsymbols
 from . import algebra, vectorops
 from .errors import ConstraintError
 from .linear import linear_form
-from .model.speeds import speeds_of
+from .model.speeds import is_quasi, speeds_of
 from .trace import Trace
 
 if TYPE_CHECKING:
@@ -335,7 +335,12 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
                 hint="Choose as many independent coordinates as there are degrees of freedom.")
     else:
         dep_idx = []
-        for i in reversed(range(len(coords))):
+        # quasi-coordinates (angular speeds' integrals) last: a contact's rows in a body's angular speeds have
+        # coefficients that vanish as it turns (rolling on the body's components w2, w3 is singular wherever b1
+        # is horizontal), while the rows in the translations of its centre are the identity at every state
+        quasi = [i for i in range(len(coords)) if is_quasi(system, coords[i])]
+        order = [i for i in reversed(range(len(coords))) if i not in quasi] + quasi[::-1]
+        for i in order:
             trial = dep_idx + [i]
             if np.linalg.matrix_rank(numA[:, trial], tol=1e-9) == len(trial):
                 dep_idx = trial
