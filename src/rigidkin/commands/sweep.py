@@ -11,7 +11,6 @@ CSV, or as Parquet when ``-o`` names a ``.parquet`` file (pyarrow).
 
 from __future__ import annotations
 
-import re
 import sys
 import time
 
@@ -63,20 +62,16 @@ def _pairs(items, what) -> dict:
     return pairs(items, what)
 
 
-_PLAIN_NUMBER = re.compile(r"[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?")
-
-
 def _value(text: str, where: str) -> float:
     """A value of an axis: a plain number read as it is (no unit registry to load), else through
     rigidkin's quantity parser (units, and every refusal: not finite, too large, not a quantity)."""
+    from ..numeric.sweep_record import plain_number
     from ..units import MAX_MAGNITUDE
     from .common import value as quantity
 
-    plain = text.strip()
-    if _PLAIN_NUMBER.fullmatch(plain):
-        v = float(plain)
-        if abs(v) <= MAX_MAGNITUDE:
-            return v
+    v = plain_number(text)
+    if v is not None and abs(v) <= MAX_MAGNITUDE:
+        return v
     return quantity(text, where)
 
 

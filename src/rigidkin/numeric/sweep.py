@@ -24,7 +24,7 @@ from ..errors import InputError, RigidkinError
 from . import batch
 from .codegen import CompiledModel, Kernel, compile_kernel, kernel
 from .state import StateLayout, parameter_vector, quantity
-from .sweep_plan import _vector_eval, axis, axis_length, check_runs, complete  # noqa: F401  (public through here)
+from .sweep_plan import _vector_eval, axis, axis_length, check_runs, complete, declared_state, runs_grid  # noqa: F401  (public here)
 from .sweep_result import SweepResult, status_text  # noqa: F401  (public through here)
 
 t = dynamicsymbols._t
@@ -98,45 +98,19 @@ def plan(system, vary: Mapping | None = None, params: Mapping | None = None, ini
     check_size(system, vary, grid, events)
     layout = StateLayout.of(system)
     base_p = parameter_vector(system, layout, params)
-    n = layout.n
-    y_base = np.zeros(2 * n)
+    y_base = declared_state(system, layout.n)
     given: set[int] = set()
-    for i, c in enumerate(system.coordinate_info.values()):
-        if c.initial is not None:
-            y_base[i] = float(c.initial)
-        if c.rate is not None:
-            y_base[n + i] = float(c.rate)
     for key, value in (initial or {}).items():
         i = layout.index(str(key))
         y_base[i] = quantity(value, None, f"initial {key}")
         given.add(i)
-    axes: dict[str, np.ndarray] = {}
-    for key, spec in (vary or {}).items():
-        axes[str(key)] = axis(spec)
-    if grid:
-        mesh = np.meshgrid(*axes.values(), indexing="ij") if axes else []
-        inputs = {k: m.ravel() for k, m in zip(axes, mesh)}
-        runs = int(np.prod([len(a) for a in axes.values()])) if axes else 1
-    else:
-        lengths = {len(a) for a in axes.values()}
-        if len(lengths) > 1:
-            raise InputError("zipped sweep axes must have equal lengths.", hint="Use a grid, or give equal counts.")
-        inputs = dict(axes)
-        runs = lengths.pop() if lengths else 1
-    P = np.tile(base_p, (runs, 1))
-    Y = np.tile(y_base, (runs, 1))
-    for name, values in inputs.items():
-        if name in layout.parameters:
-            P[:, layout.parameters.index(name)] = values
-        else:
-            try:
-                i = layout.index(name)
-            except InputError:
-                raise InputError(f"'{name}' is neither a parameter nor a coordinate or rate of {system.name}.",
-                                 where="sweep", hint=f"Parameters: {', '.join(layout.parameters)}; state: "
-                                                     f"{', '.join(layout.labels)}.") from None
-            Y[:, i] = values
-            given.add(i)
+
+    def unknown(name):
+        return InputError(f"'{name}' is neither a parameter nor a coordinate or rate of {system.name}.",
+                          where="sweep", hint=f"Parameters: {', '.join(layout.parameters)}; state: "
+                                              f"{', '.join(layout.labels)}.")
+
+    inputs, P, Y = runs_grid(vary, base_p, y_base, layout.parameters, layout.labels, given, grid, unknown)
     if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
         raise InputError("the sweep's values are not all finite numbers.", where="sweep")
     complete(Y, P, relations(system, mode, layout), given, layout.arguments())

@@ -54,23 +54,57 @@ def check_runs(lengths: list[int], n: int, n_p: int, events: int = 4, grid: bool
     return runs
 
 
+def declared_state(system, n: int) -> np.ndarray:
+    """The state the problem declares: each coordinate's initial value and rate (zero where none is given)."""
+    y = np.zeros(2 * n)
+    for i, c in enumerate(system.coordinate_info.values()):
+        if c.initial is not None:
+            y[i] = float(c.initial)
+        if c.rate is not None:
+            y[n + i] = float(c.rate)
+    return y
+
+
+def runs_grid(vary, base_p, y_base, parameters, labels, given: set, grid: bool = True, unknown=None):
+    """(inputs per run, parameters runs × n_p, states runs × 2n): every combination of the axes of ``vary``
+    (``grid``) or the axes side by side, over the base values; ``given`` gains the state slots the axes set.
+    ``unknown(name)``: the error for an axis that is neither a parameter nor a state label."""
+    axes = {str(k): axis(spec) for k, spec in (vary or {}).items()}
+    if grid:
+        mesh = np.meshgrid(*axes.values(), indexing="ij") if axes else []
+        inputs = {k: m.ravel() for k, m in zip(axes, mesh)}
+        runs = int(np.prod([len(a) for a in axes.values()])) if axes else 1
+    else:
+        lengths = {len(a) for a in axes.values()}
+        if len(lengths) > 1:
+            raise InputError("zipped sweep axes must have equal lengths.", hint="Use a grid, or give equal counts.")
+        inputs = dict(axes)
+        runs = lengths.pop() if lengths else 1
+    parameters, labels = list(parameters), list(labels)
+    P = np.tile(np.asarray(base_p, dtype=float), (runs, 1))
+    Y = np.tile(np.asarray(y_base, dtype=float), (runs, 1))
+    for name, values in inputs.items():
+        if name in parameters:
+            P[:, parameters.index(name)] = values
+        elif name in labels:
+            Y[:, labels.index(name)] = values
+            given.add(labels.index(name))
+        else:
+            raise unknown(name) if unknown else InputError(f"'{name}' is not a parameter or state of the sweep.")
+    return inputs, P, Y
+
+
 def complete(Y: np.ndarray, P: np.ndarray, rel: tuple[list, list], given: set, args=None) -> None:
     """Each run's dependent coordinates, then rates, from the constraints (``relations``), in place; the slots
     in ``given`` keep their values."""
     from .exprtree import evaluate
 
     runs = len(Y)
-    for k, group in enumerate(rel):
-        cols = [np.zeros(runs), *Y.T, *P.T]
-        for i, expr in group:
-            if i in given:
-                continue
-            if isinstance(expr, list):
-                Y[:, i] = evaluate(expr, cols, runs)
-            else:
-                Y[:, i] = _vector_eval(args, expr, cols, runs)
-            if k == 0:
-                cols = [np.zeros(runs), *Y.T, *P.T]
+    cols = [np.zeros(runs), *Y.T, *P.T]          # views: each slot completed is seen by the next
+    for i, expr in (*rel[0], *rel[1]):
+        if i in given:
+            continue
+        Y[:, i] = evaluate(expr, cols, runs) if isinstance(expr, list) else _vector_eval(args, expr, cols, runs)
 
 
 #: lambdify's namespace: numpy's own functions (``modules="numpy"`` would star-import numpy's every submodule,

@@ -39,13 +39,10 @@ def make(system, layout, rel: tuple[list, list], events, source: str, cdef: str)
     """The record of a sweep's model (None where a constraint could not be written as a tree)."""
     if any(not isinstance(expr, list) for group in rel for _, expr in group):
         return None
+    from .sweep_plan import declared_state
+
     n = layout.n
-    y_base = [0.0] * (2 * n)
-    for i, c in enumerate(system.coordinate_info.values()):
-        if c.initial is not None:
-            y_base[i] = float(c.initial)
-        if c.rate is not None:
-            y_base[n + i] = float(c.rate)
+    y_base = [float(v) for v in declared_state(system, n)]
     info = system.parameter_info
     base_p = [None if info[name].value is None else float(info[name].value) for name in layout.parameters]
     if not all(math.isfinite(v) for v in y_base) or not all(v is None or math.isfinite(v) for v in base_p):
@@ -83,19 +80,20 @@ class Layout:
         return self.labels.index(name)
 
 
-def _number(text) -> float | None:
+def plain_number(text) -> float | None:
+    """A number written plainly — sign, digits, point, exponent; no unit, no ``nan``, no ``1_000`` — else None."""
     text = str(text).strip()
     return float(text) if _PLAIN.fullmatch(text) else None
 
 
 def plan(rec: dict, vary: dict, params: dict, initial: dict):
     """(inputs, P, Y) as :func:`rigidkin.numeric.sweep.plan` makes them, or None (take the full route)."""
-    from .sweep_plan import axis, check_runs, complete
+    from .sweep_plan import axis_length, check_runs, complete, runs_grid
 
     labels, names = rec["labels"], rec["parameters"]
     base_p = list(rec["base_p"])
     for name, value in params.items():
-        v = _number(value)
+        v = plain_number(value)
         if name not in names or v is None:
             return None
         base_p[names.index(name)] = v
@@ -104,7 +102,7 @@ def plan(rec: dict, vary: dict, params: dict, initial: dict):
     Y0 = np.array(rec["y_base"], dtype=float)
     given: set[int] = set()
     for name, value in initial.items():
-        v = _number(value)
+        v = plain_number(value)
         if name not in labels or v is None:
             return None
         Y0[labels.index(name)] = v
@@ -112,24 +110,11 @@ def plan(rec: dict, vary: dict, params: dict, initial: dict):
     if any(k not in names and k not in labels for k in vary):
         return None
     n_c, n_p, n_con = rec["counts"]
-    events = len(rec["events"]) + 2 * n_con + 2
-    check_runs([len(axis(spec)) for spec in vary.values()], n_c, n_p, events)
-    axes = {k: axis(spec) for k, spec in vary.items()}
-    mesh = np.meshgrid(*axes.values(), indexing="ij") if axes else []
-    inputs = {k: m.ravel() for k, m in zip(axes, mesh)}
-    runs = int(np.prod([len(a) for a in axes.values()])) if axes else 1
-    P = np.tile(np.array(base_p, dtype=float), (runs, 1))
-    Y = np.tile(Y0, (runs, 1))
-    for name, values in inputs.items():
-        if name in names:
-            P[:, names.index(name)] = values
-        else:
-            Y[:, labels.index(name)] = values
-            given.add(labels.index(name))
+    check_runs([axis_length(spec) for spec in vary.values()], n_c, n_p, len(rec["events"]) + 2 * n_con + 2)
+    inputs, P, Y = runs_grid(vary, base_p, Y0, names, labels, given)
     if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
         return None
     rel = ([(i, tr) for i, tr in rec["coordinates"]], [(i, tr) for i, tr in rec["rates"]])
-
     complete(Y, P, rel, given)
     return inputs, P, Y
 
