@@ -28,7 +28,7 @@ import numpy as np
 import sympy as sp
 
 from ..model.constraints import ROLLING, SMOOTH, Coulomb
-from .modes import OPEN, SLIP, STICK, ModeUnavailable, describe_mode
+from .modes import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, look_ahead
 from .rhs import SimulationError
 from .slip3d import friction_needed, slip_speed
 
@@ -103,13 +103,7 @@ def check(hyb, mode: dict, forced: dict, names, t_, y, p, zero: float, force_tol
     y = np.asarray(y, dtype=float)
     react = model.reactions(t_, y, p)
     f = model.rates(t_, y, p)[:n2]
-    # a look-ahead step that moves the state by a relative 1e-7, and never more than a microsecond's
-    # worth: at rest on a threshold the rates are round-off (1e-15) and a step sized by them alone would
-    # be years long (a pushed box at its tipping instant)
-    h = min(1e-7 * (1.0 + float(np.max(np.abs(y[:n2])))) / max(float(np.max(np.abs(f))), 1e-300),
-            1e-6 * (1.0 + abs(float(t_))))
-    y2 = y.copy()
-    y2[:n2] = y[:n2] + h * f
+    h, y2 = look_ahead(t_, y, f)
     react2 = model.reactions(t_ + h, y2, p)
     fscale = max(1.0, max((abs(v) for v in react.values()), default=1.0))
     scale = max(1.0, float(np.max(np.abs(y[:n2]))))

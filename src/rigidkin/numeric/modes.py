@@ -59,6 +59,18 @@ def describe_mode(system, mode: dict) -> str:
     return ", ".join(words) or "no contacts"
 
 
+def look_ahead(t_: float, y: np.ndarray, f: np.ndarray) -> tuple[float, np.ndarray]:
+    """(h, y + h f): a short explicit step along the rates ``f`` (of the first len(f) state slots) that moves
+    the state by a relative 1e-7, and never more than a microsecond's worth — at rest on a threshold the rates
+    are round-off (1e-15), and a step sized by them alone would be years long (a pushed box as it tips)."""
+    n = len(f)
+    h = min(1e-7 * (1.0 + float(np.max(np.abs(y[:n])))) / max(float(np.max(np.abs(f))), 1e-300),
+            1e-6 * (1.0 + abs(float(t_))))
+    y2 = np.array(y, dtype=float)
+    y2[:n] = y2[:n] + h * f
+    return h, y2
+
+
 @dataclass(frozen=True)
 class Watch:
     """A quantity of the state whose zero ends a regime, and what that zero means."""
@@ -156,10 +168,7 @@ class ModeModel:
         y = np.asarray(y, dtype=float)
         n = 2 * self.layout.n
         f = self.rates(t_, y, p)[:n]
-        h = min(1e-7 * (1.0 + float(np.max(np.abs(y[:n])))) / max(float(np.max(np.abs(f))), 1e-300),
-                1e-6 * (1.0 + abs(float(t_))))      # at most a microsecond, as in contact_modes.check
-        y2 = y.copy()
-        y2[:n] = y[:n] + h * f
+        h, y2 = look_ahead(t_, y, f)
         w0, w1 = self.watch_values(t_, y, p), self.watch_values(t_ + h, y2, p)
         for wi, rel in self.conditions:
             v = float(w0[wi]) if abs(float(w0[wi])) > zero else float(w1[wi])
