@@ -26,10 +26,34 @@ t = dynamicsymbols._t
 SIMPLIFY_LIMIT = 400
 
 
+def atoms_of(exprs: Iterable, types: type | tuple) -> set:
+    """The subexpressions of ``exprs`` (expressions or matrices) that are instances of ``types`` —
+    ``Basic.atoms`` for several expressions at once, each shared subexpression visited once (multibody
+    expressions share most of their subtrees, which ``atoms`` walks again at every occurrence)."""
+    seen: set = set()
+    out: set = set()
+    stack = []
+    for e in exprs:
+        if isinstance(e, sp.MatrixBase):
+            stack.extend(e)
+        elif isinstance(e, sp.Basic):
+            stack.append(e)
+    keep = list(stack)                       # the ids below stay those of live objects
+    while stack:
+        e = stack.pop()
+        if id(e) in seen:
+            continue
+        seen.add(id(e))
+        if isinstance(e, types):
+            out.add(e)
+        stack.extend(e.args)
+    del keep
+    return out
+
+
 def functions_of_time(expr: sp.Basic) -> set[sp.Function]:
     """The undefined functions of time (coordinates, specified motions) an expression contains."""
-    return {f for f in expr.atoms(sp.Function) if isinstance(f.func, sp.core.function.UndefinedFunction)
-            and f.args == (t,)}
+    return {f for f in atoms_of([expr], AppliedUndef) if f.args == (t,)}
 
 
 def plain_state(expr: sp.Basic, extra_functions: Iterable[sp.Function] = ()) -> tuple[sp.Basic, dict]:
@@ -78,9 +102,8 @@ def state_atoms(exprs, exclude=()) -> list:
     funcs: set = set()
     derivs: set = set()
     syms: set = set()
-    for e in exprs:
-        for a in sp.sympify(e).atoms(sp.Symbol, sp.Derivative, AppliedUndef):
-            (derivs if isinstance(a, sp.Derivative) else funcs if isinstance(a, AppliedUndef) else syms).add(a)
+    for a in atoms_of([sp.sympify(e) for e in exprs], (sp.Symbol, sp.Derivative, AppliedUndef)):
+        (derivs if isinstance(a, sp.Derivative) else funcs if isinstance(a, AppliedUndef) else syms).add(a)
     out = []
     funcs = {f for f in funcs if f.args == (t,)}
     for d in derivs:

@@ -169,9 +169,12 @@ class ProjectedModel:
         gq = sp.Matrix(gaps) if gaps else sp.zeros(1, 1)
         # empty blocks travel as one zero row (lambdify has no empty matrices); _raw drops them again
         pieces += [Q, A if relating else sp.zeros(1, n), b if relating else sp.zeros(1, 1),
-                   c0 if relating else sp.zeros(1, 1), gq, gq.jacobian(qs) if gaps else sp.zeros(1, len(qs))]
+                   c0 if relating else sp.zeros(1, 1), gq]
         self._pieces = [self._sym(P) for P in pieces]
-        extra = set().union(*[P.free_symbols for P in self._pieces]) - set(self._args)
+        # ∂gap/∂q on the plain symbols (sympy differentiates a symbol far faster than a function of time)
+        self._pieces.append(self._pieces[-1].jacobian([self._plain[q] for q in qs]) if gaps
+                            else sp.zeros(1, len(qs)))
+        extra = algebra.atoms_of([e for P in self._pieces for e in P], sp.Symbol) - set(self._args)
         if extra:
             raise RigidkinError(f"the equations contain {', '.join(sorted(map(str, extra)))}, which is neither a "
                                 "coordinate, a rate, time nor a parameter.", where=system.name)
