@@ -128,10 +128,11 @@ def state_point(exprs, rng: random.Random, t_value: float, exclude=(), atoms=Non
     return out
 
 
-def time_derivatives(exprs) -> list:
+def time_derivatives(exprs, memo: dict | None = None) -> list:
     """d/dt of each expression (q(t) → q̇, q̇ → q̈, parameters constant), one pass with every shared
-    subexpression differentiated once (sympy's ``diff`` differentiates a repeated subtree each time)."""
-    memo: dict = {}
+    subexpression differentiated once (sympy's ``diff`` differentiates a repeated subtree each time).
+    ``memo``: a dict kept between calls on expressions that share subtrees (expression → its rate)."""
+    memo = {} if memo is None else memo
     zero = sp.Integer(0)
 
     def d(e):

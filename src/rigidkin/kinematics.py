@@ -42,6 +42,7 @@ class Kinematics:
         self._pos: dict = {}
         self._vel: dict = {}
         self._acc: dict = {}
+        self._rates: dict = {}          # expression → its time derivative, shared by every d/dt taken here
         self._simp: dict = {}
         self.assumptions: list[str] = []
         self.planar = self._detect_planar()
@@ -99,7 +100,7 @@ class Kinematics:
     def is_zero_vector(self, v: Vector) -> bool:
         if v == Vector(0):
             return True
-        return all(algebra.is_zero(v.dot(e)) for e in (self.F.x, self.F.y, self.F.z))
+        return all(algebra.is_zero(c) for c in vectorops.in_frame(v, self.F.ref))
 
     def reference_values(self) -> dict:
         """Parameters at their values (or 1) and coordinates at their initial values (or 0)."""
@@ -158,12 +159,12 @@ class Kinematics:
     def velocity(self, point) -> Vector:
         """v_P = F d/dt r_OP (transport theorem for components in rotating bases)."""
         if point not in self._vel:
-            self._vel[point] = vectorops.dt(self.position(point), self.F.ref)
+            self._vel[point] = vectorops.dt(self.position(point), self.F.ref, self._rates)
         return self._vel[point]
 
     def acceleration(self, point) -> Vector:
         if point not in self._acc:
-            self._acc[point] = vectorops.dt(self.velocity(point), self.F.ref)
+            self._acc[point] = vectorops.dt(self.velocity(point), self.F.ref, self._rates)
         return self._acc[point]
 
     def omega(self, frame) -> Vector:
@@ -171,7 +172,8 @@ class Kinematics:
         return frame.ref.ang_vel_in(self.F.ref)
 
     def alpha(self, frame) -> Vector:
-        return frame.ref.ang_acc_in(self.F.ref)
+        """F α B = F d/dt (F ω B) (what ``ang_acc_in`` forms, differentiated in one pass)."""
+        return vectorops.dt(self.omega(frame), self.F.ref, self._rates)
 
     def omega_of(self, body) -> Vector:
         return Vector(0) if body is None else self.omega(body.frame)

@@ -13,6 +13,8 @@ from __future__ import annotations
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
+from .algebra import time_derivatives
+
 _ZERO = sp.Integer(0)
 _t = dynamicsymbols._t
 
@@ -62,12 +64,14 @@ def cross(a: Vector, b: Vector) -> Vector:
     return Vector(out)
 
 
-def dt(v: Vector, frame) -> Vector:
+def dt(v: Vector, frame, memo: dict | None = None) -> Vector:
     """The rate of ``v`` in ``frame``: each term's components differentiated, plus ω × term for a term
-    written in a frame that turns (the transport theorem, as ``Vector.dt`` applies it)."""
+    written in a frame that turns (the transport theorem, as ``Vector.dt`` applies it).  The components
+    are differentiated in one pass (``algebra.time_derivatives``; ``memo`` kept between calls), which
+    gives sympy's ``diff`` expressions with each shared subtree differentiated once."""
     out = []
     for m, fr in getattr(v, "args", ()):
-        dm = m.applyfunc(lambda e: e.diff(_t))
+        dm = sp.Matrix(time_derivatives(list(m), memo))
         if fr == frame:
             out.append((dm, frame))
         else:

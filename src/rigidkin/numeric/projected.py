@@ -90,8 +90,10 @@ class ProjectedModel:
         # (rows linear in the speeds: d/dt (A u + b) with u̇ = 0 is Ȧ u + ḃ, no product rule through u)
         dA = algebra.time_derivatives(list(A) + list(b)) if relating else []   # shared subtrees once
         c0 = sp.Matrix([self._ke(sum((dA[i * A.cols + j] * u for j, u in enumerate(self.speeds) if A[i, j] != 0),
-                                     dA[A.rows * A.cols + i])).xreplace(zero_acc) for i in range(A.rows)]) \
+                                     dA[A.rows * A.cols + i])) for i in range(A.rows)]) \
             if relating else sp.zeros(0, 1)
+        if relating and algebra.atoms_of(c0, sp.Derivative) & set(accels):    # A or b holding a speed
+            c0 = c0.xreplace(zero_acc)
         gaps = [sp.sympify(r.gap) for r in relating if r.gap is not None and not algebra.is_zero(r.gap)]
         # independent speeds -------------------------------------------------------------------------
         self._plain = {**{u: sp.Symbol(f"_u{i}", real=True) for i, u in enumerate(self.speeds)},
@@ -101,7 +103,8 @@ class ProjectedModel:
                      [self._plain[u] for u in self.speeds] + list(self.parameters)
         rng = random.Random(5)
         ref = {s: rng.uniform(0.2, 0.6) for s in self._args}
-        Anum = np.array(self._sym(A).xreplace(ref).evalf(), dtype=float) if relating else np.zeros((0, nu))
+        Anum = np.array(algebra.evaluate(list(self._sym(A)), ref), dtype=complex).real.reshape(A.shape) \
+            if relating else np.zeros((0, nu))
         rank = np.linalg.matrix_rank(Anum, tol=1e-9) if relating else 0
         if rank < len(relating):
             raise ConstraintError(f"{len(relating) - rank} of the constraint rows repeat the others.",
