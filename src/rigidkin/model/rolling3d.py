@@ -74,6 +74,9 @@ class DiskContact(Contact):
         return kin.position(self.centre) - self.radius * self.rim_direction(kin)
 
     def gap(self, kin) -> sp.Expr:
-        n = self.normal(kin)
-        height = (kin.position(self.centre) - kin.position(self.surface.point)).dot(n)
-        return kin.simplify_expr(height - self.radius * self.rim_direction(kin).dot(n))
+        cache = kin.__dict__.setdefault("_disk_gaps", {})
+        if self.name not in cache:
+            n = self.normal(kin)
+            height = (kin.position(self.centre) - kin.position(self.surface.point)).dot(n)
+            cache[self.name] = kin.simplify_expr(height - self.radius * self.rim_direction(kin).dot(n))
+        return cache[self.name]

@@ -146,16 +146,19 @@ class ProjectedModel:
                 raise ModelError("a massless body has no inertia to project; fold it into its neighbours.",
                                  where=f"body {body.name}")
             G = body.centre
-            w = self._ke(kin.omega_of(body))
             pv, pw = self._body_partials(body)
-            I = body.inertia
             a0 = algebra.substitute(self._ke(kin.acceleration(G)), zero_acc)
-            h0 = I.dot(algebra.substitute(self._ke(kin.alpha(body.frame)), zero_acc)) + w.cross(I.dot(w))
             Jv = sp.Matrix.hstack(*[_vec(p, Fr) for p in pv])
-            Jw = sp.Matrix.hstack(*[_vec(p, Fr) for p in pw])
-            JH = sp.Matrix.hstack(*[_vec(I.dot(p), Fr) for p in pw])
+            # the rotational pieces in the body's own basis, where its central inertia Ī is constant:
+            # ω, α and the partial angular velocities are resolved once, H̄ = Ī ω by a constant matrix
+            Bf = body.frame.ref
+            Ib = body.inertia.to_matrix(Bf)
+            w = _vec(self._ke(kin.omega_of(body)), Bf)
+            alpha0 = _vec(algebra.substitute(self._ke(kin.alpha(body.frame)), zero_acc), Bf)
+            Jw = sp.Matrix.hstack(*[_vec(p, Bf) for p in pw])
+            h0 = Ib * alpha0 + w.cross(Ib * w)
             self._bodies.append((body.name, len(pieces)))
-            pieces += [body.mass * sp.ones(1, 1), Jv, _vec(a0, Fr), Jw, JH, _vec(h0, Fr)]
+            pieces += [body.mass * sp.ones(1, 1), Jv, _vec(a0, Fr), Jw, Ib * Jw, h0]
         Q = sp.zeros(n, 1)
         for ld in loads:
             for app in ld.applications(kin):

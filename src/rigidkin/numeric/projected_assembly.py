@@ -8,10 +8,13 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from .. import vectorops
+
 
 # numeric assembly ----------------------------------------------------------------------------------
 def _vec(v, frame) -> sp.Matrix:
-    return sp.zeros(3, 1) if v == 0 else v.to_matrix(frame)
+    """The components of ``v`` along the basis of ``frame`` (a sympy ReferenceFrame), as a column."""
+    return sp.Matrix(vectorops.in_frame(v, frame))
 
 
 def _solve(kind, A, b):
