@@ -51,6 +51,30 @@ def atoms_of(exprs: Iterable, types: type | tuple) -> set:
     return out
 
 
+def xreplace_shared(exprs: Iterable, mapping: Mapping, memo: dict | None = None) -> list:
+    """``[e.xreplace(mapping) for e in exprs]`` with each shared subexpression rebuilt once (``xreplace``
+    walks a repeated subtree again at every occurrence).  ``memo`` (subexpression → replacement, holding
+    ``mapping``) may be kept between calls on expressions that share subtrees."""
+    if memo is None:
+        memo = dict(mapping)
+    elif not memo:
+        memo.update(mapping)
+
+    def rep(e):
+        hit = memo.get(e)
+        if hit is not None:
+            return hit
+        if not e.args:
+            out = e
+        else:
+            args = [rep(a) for a in e.args]
+            out = e.func(*args) if any(a is not b for a, b in zip(args, e.args)) else e
+        memo[e] = out
+        return out
+
+    return [rep(e) for e in exprs]
+
+
 def functions_of_time(expr: sp.Basic) -> set[sp.Function]:
     """The undefined functions of time (coordinates, specified motions) an expression contains."""
     return {f for f in atoms_of([expr], AppliedUndef) if f.args == (t,)}
@@ -61,7 +85,7 @@ def plain_state(expr: sp.Basic, extra_functions: Iterable[sp.Function] = ()) -> 
     funcs = functions_of_time(expr) | set(extra_functions)
     forward: dict = {}
     back: dict = {}
-    derivs = sorted(expr.atoms(sp.Derivative), key=lambda d: -sum(c for _, c in d.variable_count))
+    derivs = sorted(atoms_of([expr], sp.Derivative), key=lambda d: -sum(c for _, c in d.variable_count))
     for d in derivs:
         if d.expr in funcs:
             order = sum(c for _, c in d.variable_count)
@@ -72,7 +96,11 @@ def plain_state(expr: sp.Basic, extra_functions: Iterable[sp.Function] = ()) -> 
         s = sp.Symbol(f"_{f.func.__name__}_d0", real=True)
         forward[f] = s
         back[s] = f
-    return expr.xreplace(forward) if forward else expr, back
+    if not forward:
+        return expr, back
+    if isinstance(expr, sp.MatrixBase):
+        return expr.__class__(expr.rows, expr.cols, xreplace_shared(list(expr), forward)), back
+    return xreplace_shared([expr], forward)[0], back
 
 
 def random_point(symbols: Iterable[sp.Symbol], rng: random.Random) -> dict:
@@ -303,19 +331,19 @@ def trig_reduce(expr: sp.Basic) -> sp.Basic:
     # radicals of parameters (sqrt(R² − l²/4) and sqrt(4R² − l²)) in one canonical form, then symbols
     expr = expr.replace(lambda x: x.is_Pow and x.exp.is_Rational and not x.exp.is_Integer and x.base.is_Add,
                         lambda x: sp.Pow(sp.factor(x.base), x.exp))
-    radicals = sorted({x for x in expr.atoms(sp.Pow) if x.exp.is_Rational and not x.exp.is_Integer
+    radicals = sorted({x for x in atoms_of([expr], sp.Pow) if x.exp.is_Rational and not x.exp.is_Integer
                        and not x.base.is_Symbol}, key=sp.default_sort_key)
     rad = {x: sp.Dummy(f"rad{i}", positive=True) for i, x in enumerate(radicals)}
     if rad:
         out = trig_reduce(expr.xreplace(rad))
         return out.xreplace({v: k for k, v in rad.items()})
-    trig = [f for f in expr.atoms(sp.sin, sp.cos, sp.tan)]
+    trig = list(atoms_of([expr], (sp.sin, sp.cos, sp.tan)))
     if not trig:
         return sp.cancel(expr) if expr.is_rational_function() else expr
     e = expr.rewrite(sp.tan, sp.sin) if expr.has(sp.tan) else expr
-    e = e.xreplace({f: sp.expand_trig(f) for f in e.atoms(sp.sin, sp.cos) if f.args[0].is_Add or f.args[0].is_Mul
-                    and f.args[0].args[0].is_Integer})
-    args = sorted({f.args[0] for f in e.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    e = e.xreplace({f: sp.expand_trig(f) for f in atoms_of([e], (sp.sin, sp.cos))
+                    if f.args[0].is_Add or f.args[0].is_Mul and f.args[0].args[0].is_Integer})
+    args = sorted({f.args[0] for f in atoms_of([e], (sp.sin, sp.cos))}, key=sp.default_sort_key)
     S = [sp.Dummy(f"s{i}") for i in range(len(args))]
     C = [sp.Dummy(f"c{i}") for i in range(len(args))]
     fwd = {}
@@ -323,7 +351,7 @@ def trig_reduce(expr: sp.Basic) -> sp.Basic:
         fwd[sp.sin(a)] = si
         fwd[sp.cos(a)] = ci
     p = e.xreplace(fwd)
-    if p.atoms(sp.Function):
+    if atoms_of([p], sp.Function):
         return expr
     try:
         num, den = sp.fraction(sp.cancel(p))
@@ -364,7 +392,7 @@ TRIG_ARGS_LIMIT = 3
 
 
 def _readable_plain(expr: sp.Basic) -> sp.Basic:
-    n_args = len({f.args[0] for f in expr.atoms(sp.sin, sp.cos)})
+    n_args = len({f.args[0] for f in atoms_of([expr], (sp.sin, sp.cos))})
     if n_args > TRIG_ARGS_LIMIT:
         return expr
     ops = _ops(expr)
@@ -435,12 +463,17 @@ def substitute(expr, mapping: Mapping):
     """``xreplace`` that also reaches into sympy vectors and matrices."""
     from sympy.physics.vector import Vector
 
+    if not mapping:
+        return expr
     if isinstance(expr, Vector):
-        return Vector([(expr_i.xreplace(mapping), frame) for expr_i, frame in expr.args]) \
+        memo = dict(mapping)
+        return Vector([(sp.Matrix(xreplace_shared(list(m), mapping, memo)), frame) for m, frame in expr.args]) \
             if expr.args else expr
-    if mapping:
-        return expr.xreplace(mapping)
-    return expr
+    if isinstance(expr, (int, float)):
+        expr = sp.sympify(expr)
+    if isinstance(expr, sp.Expr):
+        return xreplace_shared([expr], mapping)[0]
+    return expr.xreplace(mapping)           # matrices, dyadics
 
 
 def is_transcendental_in(expr: sp.Basic, x: sp.Symbol) -> bool:

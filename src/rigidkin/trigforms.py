@@ -24,6 +24,8 @@ from math import comb
 
 import sympy as sp
 
+from .algebra import atoms_of
+
 #: Expressions with more operations, or more distinct angles, than these are left as they are.
 COMPACT_LIMIT = 400
 ANGLES_LIMIT = 3
@@ -110,7 +112,7 @@ def _better(cands: list, current: sp.Basic, free_sign: bool = True) -> sp.Basic:
 
 
 def _angles(e: sp.Basic) -> list:
-    return sorted({f.args[0] for f in e.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    return sorted({f.args[0] for f in atoms_of([e], (sp.sin, sp.cos))}, key=sp.default_sort_key)
 
 
 def _split_multiple(arg: sp.Basic):
@@ -122,13 +124,13 @@ def _split_multiple(arg: sp.Basic):
 
 
 def _multiple_angles(e: sp.Basic) -> list:
-    return sorted((f for f in e.atoms(sp.sin, sp.cos) if _split_multiple(f.args[0]) and _split_multiple(f.args[0])[0]
-                   <= 4), key=sp.default_sort_key)
+    return sorted((f for f in atoms_of([e], (sp.sin, sp.cos))
+                   if _split_multiple(f.args[0]) and _split_multiple(f.args[0])[0] <= 4), key=sp.default_sort_key)
 
 
 def _mixed_angles(e: sp.Basic) -> set:
     """Angles x that appear both as x and as 2x (the double-angle rewrite made the reading inconsistent)."""
-    args = {f.args[0] for f in e.atoms(sp.sin, sp.cos)}
+    args = {f.args[0] for f in atoms_of([e], (sp.sin, sp.cos))}
     mixed = set()
     for a in args:
         km = _split_multiple(a)

@@ -193,23 +193,10 @@ class ProjectedModel:
         """q(t), q̇ → plain symbols; t → _t, as ``xreplace`` does (q̇ met before the q inside it), with one memo
         for every entry of every matrix: the pieces share most of their subexpressions."""
         memo = self.__dict__.setdefault("_sym_memo", {})
-        if not memo:
-            memo.update({**self._plain, t: self._args[0]})
-
-        def rep(e):
-            hit = memo.get(e)
-            if hit is not None:
-                return hit
-            if not e.args:
-                out = e
-            else:
-                args = [rep(a) for a in e.args]
-                out = e.func(*args) if any(a is not b for a, b in zip(args, e.args)) else e
-            memo[e] = out
-            return out
-
         M = sp.Matrix(M)
-        return M.applyfunc(rep) if M.rows and M.cols else M
+        if not (M.rows and M.cols):
+            return M
+        return sp.Matrix(M.rows, M.cols, algebra.xreplace_shared(list(M), {**self._plain, t: self._args[0]}, memo))
 
     def _body_partials(self, body) -> tuple[list, list]:
         """Partial velocities of the mass centre and partial angular velocities of ``body``."""
