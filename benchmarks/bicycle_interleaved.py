@@ -1,13 +1,15 @@
 """The Whipple bicycle's derivation against sympy's own Kane bicycle, interleaved in one process.
 
-Three pairs (rigidkin's ``examples.bicycle.projected()``, then sympy's test_kane3 model), caches cleared before
-each; prints (rigidkin CPU s, sympy CPU s, ratio) per pair.  Interleaving puts both under the same load.
+Five pairs (rigidkin's ``examples.bicycle.projected()``, then sympy's test_kane3 model), caches cleared before
+each; prints (rigidkin CPU s, sympy CPU s, ratio) per pair and the median ratio.  Interleaving puts both
+under the same load.
 
     python benchmarks/bicycle_interleaved.py
 """
 
 from __future__ import annotations
 
+import statistics
 import sys
 import time
 from pathlib import Path
@@ -25,7 +27,7 @@ def main() -> None:
 
     rigidkin_solve(examples.build("ladder"))          # imports and lazy module loads, untimed
     rows = []
-    for _ in range(3):
+    for _ in range(5):
         cold_caches()
         t0 = time.process_time()
         bicycle.projected()
@@ -38,6 +40,7 @@ def main() -> None:
     print("rigidkin s   sympy Kane s   ratio")
     for a, b, r in rows:
         print(f"{a:10.2f}   {b:12.2f}   {r:5.2f}")
+    print(f"median ratio {statistics.median(r for _, _, r in rows):.2f}")
 
 
 if __name__ == "__main__":

@@ -173,6 +173,21 @@ def test_validate_and_list(capsys):
     assert "Ladder sliding on a frictionless wall and floor" in lines["ladder"]
 
 
+def test_list_titles_are_the_built_systems_titles(capsys):
+    """``rigidkin list`` reads titles from the files without building; each is the title of the system
+    that ``solve`` would build from the same name."""
+    from rigidkin import examples
+    from rigidkin.commands.common import load_system
+
+    code, out, _ = run_cli(capsys, "list")
+    assert code == 0
+    listed = {line.split()[0]: line.split(None, 2)[2] for line in out.splitlines()}
+    assert sorted(listed) == examples.names()
+    for name in examples.names():
+        system, _ = load_system(name)
+        assert listed[name] == system.title, name
+
+
 def test_unknown_problem_exits_2(capsys):
     code, _, err = run_cli(capsys, "solve", "no-such-card")
     assert code == 2 and "neither a problem file nor a bundled example" in err and "ladder" in err

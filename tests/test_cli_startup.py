@@ -30,6 +30,13 @@ def test_help_and_import_load_no_heavy_library():
     assert not _modules_after("import rigidkin") & set(HEAVY)
 
 
+def test_list_builds_nothing():
+    """``rigidkin list`` reads the examples' titles from their files: no sympy, no model built."""
+    loaded = _modules_after("import contextlib, io\nfrom rigidkin.cli import main\n"
+                            "with contextlib.redirect_stdout(io.StringIO()): main(['list'])")
+    assert not loaded & set(HEAVY), loaded & set(HEAVY)
+
+
 def test_the_public_names_still_load():
     import rigidkin as rk
 

@@ -25,6 +25,9 @@ import sympy as sp
 
 import rigidkin as rk
 
+#: The title ``build()`` gives the system (``rigidkin list`` reads it without building).
+TITLE = "Whipple bicycle (benchmark of Meijaard et al. 2007)"
+
 #: Meijaard et al. (2007), Table 1: the benchmark bicycle's parameters (SI units).
 BENCHMARK = {
     "w": 1.02, "c": 0.08, "lam": "pi/10", "g": 9.81,
@@ -64,10 +67,10 @@ class WhippleBicycle(rk.System):
 
 
 def build() -> rk.System:
-    s = WhippleBicycle("bicycle", title="Whipple bicycle (benchmark of Meijaard et al. 2007)",
-                  statement="The benchmark bicycle: rear wheel, rear frame with rider, front frame and front "
-                            "wheel, hinged at the hubs and the steering head, rolling without slip on level "
-                            "ground (Meijaard, Papadopoulos, Ruina & Schwab 2007, Table 1).")
+    s = WhippleBicycle("bicycle", title=TITLE,
+                       statement="The benchmark bicycle: rear wheel, rear frame with rider, front frame and front "
+                                 "wheel, hinged at the hubs and the steering head, rolling without slip on level "
+                                 "ground (Meijaard, Papadopoulos, Ruina & Schwab 2007, Table 1).")
     P = {}
     for name, value in BENCHMARK.items():
         positive = not name.startswith("z") and name != "IHxz"

@@ -8,6 +8,9 @@ scaling model of the benchmarks: the classic n-link pendulum of multibody codes.
 
 import rigidkin as rk
 
+#: The title of the default chain (n = 5); ``rigidkin list`` reads it without building.
+TITLE = "Chain of 5 uniform rods"
+
 
 def build(n: int = 5) -> rk.System:
     """The chain of ``n`` identical rods (n ≥ 1), released from rest with θ_i = 0.3 + 0.1 i rad."""
