@@ -99,48 +99,52 @@ def ratio_table(repeats: int) -> str:
     from rigidkin import examples
     from rigidkin.examples import chain
 
-    def cpu(fn, reps):
-        times = []
+    def paired(fa, fb, reps, parts=False):
+        """rigidkin, then KanesMethod, ``reps`` times in turn (both under the same load): the median
+        times and the median of the ratios of the pairs.  ``parts``: ``fb`` returns (Kane s, Kane eqs s)."""
+        rows = []
         for _ in range(reps):
             cold_caches()
             t0 = time.process_time()
-            fn()
-            times.append(time.process_time() - t0)
-        return statistics.median(times)
+            fa()
+            a = time.process_time() - t0
+            cold_caches()
+            t0 = time.process_time()
+            out = fb()
+            b, eq = out if parts else (time.process_time() - t0, None)
+            rows.append((a, b, eq, a / b))
+        med = [statistics.median(r[i] for r in rows) if rows[0][i] is not None else None for i in range(4)]
+        return med
 
     rigidkin_solve(examples.build("ladder"))      # imports and lazy module loads, untimed
     kane_parts("ladder")
+    rigidkin_solve(chain.build(2))
+    kane_chain(2)
     rows = []
     for n in (6, 10, 20):
         reps = repeats if n <= 10 else 1
-        t_rk = cpu(lambda n=n: rigidkin_solve(chain.build(n)), reps)
-        t_km = cpu(lambda n=n: kane_chain(n), reps)
-        rows.append([f"chain n = {n}", t_rk, t_km, None, t_rk / t_km])
+        t_rk, t_km, _, ratio = paired(lambda n=n: rigidkin_solve(chain.build(n)), lambda n=n: kane_chain(n), reps)
+        rows.append([f"chain n = {n}", t_rk, t_km, None, ratio])
         print(f"  chain {n} done", flush=True)
     for name in EXAMPLES_3D:
-        t_rk = cpu(lambda name=name: rigidkin_solve(examples.build(name)), repeats)
-        parts = []
-        for _ in range(repeats):
-            cold_caches()
-            parts.append(kane_parts(name))
-        t_km = statistics.median(p[0] for p in parts)
-        t_eq = statistics.median(p[1] for p in parts)
-        rows.append([name, t_rk, t_km, t_eq, t_rk / t_km])
+        t_rk, t_km, t_eq, ratio = paired(lambda name=name: rigidkin_solve(examples.build(name)),
+                                         lambda name=name: kane_parts(name), repeats,
+                                         parts=True)
+        rows.append([name, t_rk, t_km, t_eq, ratio])
         print(f"  {name} done", flush=True)
     import bicycle as bike
 
     from rigidkin.examples import bicycle
 
-    t_rk = cpu(bicycle.projected, 1)
-    t_km = cpu(bike.sympy_bicycle, 1)
-    rows.append(["Whipple bicycle", t_rk, t_km, None, t_rk / t_km])
+    t_rk, t_km, _, ratio = paired(bicycle.projected, bike.sympy_bicycle, repeats)
+    rows.append(["Whipple bicycle", t_rk, t_km, None, ratio])
     return table("rigidkin / KanesMethod, derivation (CPU s, same process, cold caches)",
                  ["model", "rigidkin", "KanesMethod", "Kane eqs", "ratio"], rows,
                  "rigidkin: System.solve() with M and f as derived (reactions, q̈ and readable forms on demand); "
                  "bicycle: examples.bicycle.projected().\nKanesMethod: chain built with sympy.physics.mechanics "
                  "alone; examples: model from rigidkin's mode setup + KanesMethod (setup included; 'Kane eqs' = "
                  "kanes_equations alone); bicycle: sympy's test_kane3 model.\nratio = rigidkin / KanesMethod "
-                 f"(median of {repeats} runs; n = 20 and the bicycle one run).")
+                 f"(the two in turn, {repeats} pairs, n = 20 one pair; times and ratio the medians over the pairs).")
 
 
 def examples_table(repeats: int, limit: float) -> str:

@@ -28,9 +28,12 @@ def in_frame(v: Vector, frame) -> tuple:
         c = list(m)
         if fr != frame:
             d = _dcm(frame, fr)
-            c = [d[i][0] * c[0] + d[i][1] * c[1] + d[i][2] * c[2] for i in range(3)]
+            # sympy's zero is one object: skip the products it would make (Zero.__mul__ is not free)
+            c = [sp.Add(*[x * y for x, y in zip(d[i], c) if x is not _ZERO and y is not _ZERO])
+                 for i in range(3)]
         for i in range(3):
-            out[i] += c[i]
+            if c[i] is not _ZERO:
+                out[i] += c[i]
     return tuple(out)
 
 
