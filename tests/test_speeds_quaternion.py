@@ -202,6 +202,40 @@ def test_tumbling_box_through_every_euler_singularity():
     _conserved(ys, H, T)
 
 
+# closed-form linearisations are written in q̇: refused, not silently wrong, for other speeds ------------
+def _top(speeds, sequence="313"):
+    s = rk.System("top")
+    m, g, l = (s.parameter(n, u, n, value=v) for n, u, v in (("m", "kg", 0.1), ("g", "m/s^2", 9.81),
+                                                                ("l", "m", 0.03)))
+    I1, I3 = (s.parameter(n, "kg*m^2", n, value=v) for n, v in (("I1", 1.2e-4), ("I3", 4e-5)))
+    q = [s.coordinate(n, initial=v) for n, v in (("psi", 0.0), ("theta", 0.5), ("phi", 0.0))]
+    B = s.frame("B", sequence=sequence, angles=q, speeds=speeds)
+    G = s.point("G", offset=l * B.z)
+    top = s.body("top", rk.shapes.Inertia(m, I1 - m * l**2, I1 - m * l**2, I3), frame=B, at=G)
+    s.pin("O", s.origin, top)
+    s.gravity(g, -s.inertial.z)
+    return s, q
+
+
+def test_closed_form_linearisations_refuse_speeds_that_are_not_rates():
+    from rigidkin.analysis import equilibrium, steady
+
+    s, (psi, theta, phi) = _top(("w1", "w2", "w3"))
+    sol = s.solve()
+    for call in (lambda: equilibrium.equilibria(sol), lambda: equilibrium.linearise(sol, {theta: 0}),
+                 lambda: steady.linearise(sol, {theta: 0.5}, check=False)):
+        with pytest.raises(rk.RigidkinError, match="w1, w2, w3, which are not coordinate rates"):
+            call()
+    # the same top in q̇ (a 1-2-3 sequence, regular where the axis hangs down: turned by π about Ex)
+    # swings about the hanging state with ω² = m g l / I1 in both directions
+    s, (a, b, c) = _top(None, "123")
+    sol = s.solve()
+    hanging = equilibrium.linearise(sol, {a: sp.pi, b: 0, c: 0})
+    assert "stable" in hanging.stability
+    w2 = sorted(abs(complex(e).imag) ** 2 for e in hanging.eigenvalues if abs(complex(e)) > 1e-9)
+    assert w2 and np.isclose(w2[-1], 0.1 * 9.81 * 0.03 / 1.2e-4, rtol=1e-9)
+
+
 # the bicycle with generalised speeds -------------------------------------------------------------------
 @pytest.mark.slow
 def test_bicycle_eigenvalues_with_angular_speeds():

@@ -18,6 +18,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from .. import algebra
 from ..errors import RigidkinError
+from ..model.speeds import require_rate_speeds
 from ..printing import text
 from .events import SOLVE_SECONDS, _num, numeric_values
 from .integrals import single_regime
@@ -51,6 +52,7 @@ class Equilibrium:
 
 
 def _generalised(solution):
+    require_rate_speeds(solution.system, "an equilibrium's linearisation")
     regime = single_regime(solution)
     return regime, regime.mass_matrix, regime.forcing
 

@@ -24,6 +24,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from .. import algebra
 from ..errors import RigidkinError
+from ..model.speeds import require_rate_speeds
 
 t = dynamicsymbols._t
 
@@ -87,6 +88,7 @@ def _present(exprs) -> set:
 
 
 def _generalised(solution):
+    require_rate_speeds(solution.system, "a steady motion's linearisation")
     if len(solution.regimes) != 1:
         raise RigidkinError(f"the solution has {len(solution.regimes)} regimes; a steady motion is linearised "
                             "in one.", where="steady motion", hint="Pass solution.regime(i) through a "

@@ -212,6 +212,20 @@ def is_quasi(system, q) -> bool:
     return any(q in g.quasi for g in getattr(system, "speed_groups", {}).values())
 
 
+def require_rate_speeds(system, what: str) -> None:
+    """Refuse, in one paragraph, a closed-form analysis (``what``) that linearises in q and q̇ when the
+    system's speeds are not the coordinate rates (body angular-velocity components, quaternions)."""
+    ke = speeds_of(system)
+    if ke.trivial:
+        return
+    named = ", ".join(u.func.__name__ for u in ke.speeds if not isinstance(u, sp.Derivative))
+    raise ModelError(f"{what} is written for the coordinates and their rates (u = q̇), but this system's speeds "
+                     f"include {named}, which are not coordinate rates (q̇ = W(q) u).", where=system.name,
+                     hint="Linearise numerically with rigidkin.numeric.projected.ProjectedModel(system): its "
+                          "state_matrix() and linearise() handle any speeds; or declare the frame without "
+                          "speeds= (and without a quaternion) to keep u = q̇.")
+
+
 def speeds_of(system) -> KinematicEquations:
     """The kinematic equations of ``system`` (cached on it)."""
     cache = getattr(system, "_cache", None)
