@@ -93,6 +93,7 @@ def main() -> None:
                      (f"{args.before}: rigidkin solve ladder", rk + ["solve", "ladder"], None, old_env)]
         rows += [
             ("rigidkin --help", rk + ["--help"]),
+            ("rigidkin list", rk + ["list"]),
             ("rigidkin solve ladder (cold: derives)", rk + ["solve", "ladder", "--no-cache"]),
             ("rigidkin solve ladder (warm: output kept)", rk + ["solve", "ladder"]),
             ("rigidkin solve ladder (warm: derivation read, text written)", rk + ["solve", "ladder"],
