@@ -126,6 +126,7 @@ def test_text_output_is_for_people(capsys):
     assert "θ\u0308 = 3·g·sin(θ)/(2·l)" in out
     assert "angle between the rod and the wall" in out              # the senses restated
     assert "x = l·sin(θ)" in out                                      # the dependent coordinate
+    assert any(line.lstrip().startswith("x (") and line.endswith("[dependent]") for line in out.splitlines())
     assert "N_A: normal force of contact A" in out and "N_B" in out    # reactions named
     assert "leaves_wall" in out and "acos(2/3)" in out and "48.19°" in out
     # one equation per block: blank lines around each numbered equation

@@ -203,7 +203,7 @@ def test_tumbling_box_through_every_euler_singularity():
 
 
 # closed-form linearisations are written in q̇: refused, not silently wrong, for other speeds ------------
-def _top(speeds, sequence="313"):
+def _euler_top(speeds, sequence="313"):
     s = rk.System("top")
     m, g, l = (s.parameter(n, u, n, value=v) for n, u, v in (("m", "kg", 0.1), ("g", "m/s^2", 9.81),
                                                                 ("l", "m", 0.03)))
@@ -220,7 +220,7 @@ def _top(speeds, sequence="313"):
 def test_closed_form_linearisations_refuse_speeds_that_are_not_rates():
     from rigidkin.analysis import equilibrium, steady
 
-    s, (psi, theta, phi) = _top(("w1", "w2", "w3"))
+    s, (psi, theta, phi) = _euler_top(("w1", "w2", "w3"))
     sol = s.solve()
     for call in (lambda: equilibrium.equilibria(sol), lambda: equilibrium.linearise(sol, {theta: 0}),
                  lambda: steady.linearise(sol, {theta: 0.5}, check=False)):
@@ -228,7 +228,7 @@ def test_closed_form_linearisations_refuse_speeds_that_are_not_rates():
             call()
     # the same top in q̇ (a 1-2-3 sequence, regular where the axis hangs down: turned by π about Ex)
     # swings about the hanging state with ω² = m g l / I1 in both directions
-    s, (a, b, c) = _top(None, "123")
+    s, (a, b, c) = _euler_top(None, "123")
     sol = s.solve()
     hanging = equilibrium.linearise(sol, {a: sp.pi, b: 0, c: 0})
     assert "stable" in hanging.stability
@@ -294,6 +294,10 @@ def test_sleeping_top_file_solve_and_simulate(tmp_path):
     sol = s.solve()
     e = s.coordinates[:4]
     w = speeds_of(s).speeds
+    from rigidkin.report.text import solution_text
+
+    listed = [line for line in solution_text(sol).splitlines() if "Euler parameter" in line]
+    assert len(listed) == 4 and all(line.endswith("[its rate from the speeds: q̇ = W(q) u]") for line in listed)
     P = {str(k): v for k, v in s.parameters.items()}
     rng = np.random.default_rng(3)
     ev = rng.normal(size=4)

@@ -76,8 +76,11 @@ def reaction_labels(system) -> dict[str, str]:
 def _coordinates(sol) -> list[str]:
     s = sol.system
     out = ["Coordinates"]
+    # coordinates whose rates the speeds give (Euler parameters, angles with angular speeds): q̇ = W(q) u
+    by_speeds = {q for g in getattr(s, "speed_groups", {}).values() for q in g.coordinates}
     for c in s.coordinate_info.values():
-        role = "" if c.symbol in sol.coordinates else "  [dependent]"
+        role = "" if c.symbol in sol.coordinates else \
+            "  [its rate from the speeds: q̇ = W(q) u]" if c.symbol in by_speeds else "  [dependent]"
         out.append(f"{_INDENT}{text(c.symbol)} ({c.kind}): {c.sense or c.description or 'no sense given'}{role}")
     if sol.relations:
         out.append(f"{_INDENT}while the constraints hold:")
