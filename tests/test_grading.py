@@ -454,3 +454,23 @@ def test_worksheet_mode_rolling(tmp_path):
     rep = grade(parse_worksheet(text, tmp_path / "ws.toml"))
     assert [s.verdict for s in rep.steps] == ["correct", "incorrect"]
     assert "rotational inertia missing" in rep.steps[1].feedback[0]
+
+
+# a top with Euler parameters and body angular speeds (issue-18 speeds): the engine's equations are in
+# ẇ; a hand derivation writes Euler's equations on |e| = 1, I1 ẇ1 + (I3 − I1) w2 w3 = M1 with the gravity
+# moment M1 = m g l (b2·Ez) = 2 m g l (e0 e1 + e2 e3).  Graded on unit Euler parameters; a wrong equation
+# is never graded correct (the accelerations ẇ are the unknowns, not a quasi-coordinate's q̈).
+def test_quaternion_top_euler_equations(tmp_path):
+    import re
+    from pathlib import Path
+
+    src = (Path(__file__).parent / "test_speeds_quaternion.py").read_text(encoding="utf-8")
+    (tmp_path / "top.toml").write_text(re.search(r'TOP_FILE = """(.*?)"""', src, re.S).group(1), encoding="utf-8")
+    euler = "I1*ddot(w1_int) + (I3 - I1)*dot(w2_int)*dot(w3_int)"
+    check("top.toml",
+          [{"kind": "eom", "claim": f"{euler} = 2*m*g*l*(e0*e1 + e2*e3)"},
+           {"kind": "eom", "claim": "I3*ddot(w3_int) = 0"}],
+          [({"kind": "eom", "claim": f"{euler} = 0"}, "missing term"),
+           ({"kind": "eom", "claim": f"{euler} = -2*m*g*l*(e0*e1 + e2*e3)"}, "extra term"),
+           ({"kind": "eom", "claim": "I1*ddot(w1_int) = 5*m*g*l"}, "")],
+          tmp_path)

@@ -277,7 +277,9 @@ def reference(ref: str, mode: dict | None = None) -> Reference:
     unknowns = [q.diff(t, 2) for q in sol.coordinates] + list(setup.reactions)
     plain_unknowns = [plain_accel(q) for q in sol.coordinates] + list(setup.reactions)
     scope = system_scope(system)
-    r = Reference(ref, system, spec, sol, setup, scope, unknowns, Sampler(plain_unknowns))
+    quaternions = [tuple(to_plain(e) for e in g.coordinates)
+                   for g in getattr(system, "speed_groups", {}).values() if g.kind == "quaternion"]
+    r = Reference(ref, system, spec, sol, setup, scope, unknowns, Sampler(plain_unknowns, unit_groups=quaternions))
     r.equations = [e.expr for e in sol.equations]
     _CACHE[key] = r
     return r

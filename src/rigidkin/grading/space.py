@@ -30,20 +30,31 @@ class NotLinear(ValueError):
 
 
 def plain_accel(q) -> sp.Symbol:
-    return sp.Symbol(f"_{q.func.__name__}_d2", real=True)
+    """The plain symbol that ``to_plain`` gives q̈: ``_q_d2``, or ``_w_d1`` for a quasi-coordinate whose
+    rate is the speed w (its second derivative is ẇ, the unknown its equations are written in)."""
+    return to_plain(q.diff(t, 2))
 
 
 class Sampler:
     """Random states and parameter sets; each symbol's value depends only on its name and the sample."""
 
-    def __init__(self, unknowns, n: int = SAMPLES, seed: int = 19):
+    def __init__(self, unknowns, n: int = SAMPLES, seed: int = 19, unit_groups=()):
         self.n, self.seed = n, seed
         self.unknowns = list(unknowns)            # plain symbols
         self._values: list[dict] = [{} for _ in range(n)]
         self._funcs: dict = {}
+        # Euler parameters (plain symbols, four per frame): sampled together on |e| = 1, where a hand
+        # derivation writes them (the engine's forms hold for any e; a student's for unit e)
+        self._unit = {s: tuple(g) for g in unit_groups for s in g}
 
     def value(self, i: int, s: sp.Symbol) -> float:
         d = self._values[i]
+        if s not in d and s in self._unit:
+            group = self._unit[s]
+            rng = random.Random(f"{self.seed}:{i}:" + ":".join(x.name for x in group))
+            e = [rng.gauss(0.0, 1.0) for _ in group]
+            norm = sum(x * x for x in e) ** 0.5
+            d.update({x: v / norm for x, v in zip(group, e)})
         if s not in d:
             rng = random.Random(f"{self.seed}:{i}:{s.name}")
             if s == t:
