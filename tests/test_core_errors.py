@@ -131,3 +131,18 @@ def test_strings_are_refused_in_the_python_api():
     s, rod, th, R, l = pendulum()
     with pytest.raises(ModelError, match="got the string 'l/2'"):
         s.spring("k", "G", s.origin, "l/2")
+
+
+def test_a_constraint_row_with_accelerations_is_named():
+    """A point placed by a rate (x' Ex) makes its no-slip row hold an acceleration: refused as such (the
+    check compared symbols of other assumptions, never matched, and the row was reported as redundant)."""
+    from sympy.physics.vector import dynamicsymbols
+
+    s = rk.System("acc")
+    m = s.parameter("m", "kg", "mass", value=1.0)
+    x, y = s.coordinate("x", kind="length"), s.coordinate("y", kind="length")
+    P = s.point("P", offset=x.diff(dynamicsymbols._t) * s.inertial.x + y * s.inertial.y)
+    b = s.body("b", rk.shapes.PointMass(m), frame=s.inertial, at=P)
+    s.contact("c", b, s.plane(s.origin, s.inertial.y, name="ground"), friction="rolling")
+    with pytest.raises(ConstraintError, match="a constraint row involves accelerations"):
+        s.solve()

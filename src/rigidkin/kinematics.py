@@ -299,8 +299,8 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
         return _kinematic_equations(Reduction(tuple(coords), (), built_in=tuple(built)), ke, kin, trace)
     rates = _rates(coords)
     A, b = linear_form(exprs, rates)
-    if any(algebra.plain_state(e)[0].has(*[sp.Symbol(f"_{q.func.__name__}_d2") for q in coords])
-           for e in exprs):
+    accels = [algebra.plain_state(q.diff(t, 2))[0] for q in coords]      # the symbols plain_state gives q̈
+    if any(algebra.plain_state(e)[0].has(*accels) for e in exprs):
         raise ConstraintError("a constraint row involves accelerations.", where=relating[0].constraint)
     rng = random.Random(11)
     numA = _numeric_matrix(A, rng)
