@@ -469,8 +469,14 @@ def test_quaternion_top_euler_equations(tmp_path):
     euler = "I1*ddot(w1_int) + (I3 - I1)*dot(w2_int)*dot(w3_int)"
     check("top.toml",
           [{"kind": "eom", "claim": f"{euler} = 2*m*g*l*(e0*e1 + e2*e3)"},
-           {"kind": "eom", "claim": "I3*ddot(w3_int) = 0"}],
+           {"kind": "eom", "claim": "I3*ddot(w3_int) = 0"},
+           # the speeds by their own names: w, and dot(w) for its rate
+           {"kind": "eom", "claim": "I1*dot(w1) + (I3 - I1)*w2*w3 = 2*m*g*l*(e0*e1 + e2*e3)"},
+           {"kind": "kinematics", "claim": "omega_B = w1*b1 + w2*b2 + w3*b3"}],
           [({"kind": "eom", "claim": f"{euler} = 0"}, "missing term"),
            ({"kind": "eom", "claim": f"{euler} = -2*m*g*l*(e0*e1 + e2*e3)"}, "extra term"),
-           ({"kind": "eom", "claim": "I1*ddot(w1_int) = 5*m*g*l"}, "")],
+           ({"kind": "eom", "claim": "I1*ddot(w1_int) = 5*m*g*l"}, ""),
+           ({"kind": "kinematics", "claim": "omega_B = w1*b1 + w2*b2"}, "component along b3")],
           tmp_path)
+    rep = graded("top.toml", [{"kind": "eom", "claim": "I1*ddot(w1) = 0"}], tmp_path)
+    assert rep.steps[0].verdict == "unreadable" and "dot(w1) is already its rate" in rep.steps[0].feedback[0]

@@ -365,3 +365,25 @@ def test_bad_quaternion_frames_in_files(tmp_path, old, new, field):
     msg = str(info.value)
     assert "top.toml, line" in msg and field in msg and "\n" not in msg.strip()
     assert main(["validate", str(path)]) == 2
+
+
+def test_loads_read_the_speeds_by_name(tmp_path):
+    """A file's loads may use a frame's speeds (a spin damper −c w3 b3): the top's spin then decays as
+    ẇ3 = −c w3 / I3.  Their rates, accelerations, are refused in a load with one paragraph."""
+    from rigidkin.errors import InputError
+    from rigidkin.io.problem import load_problem
+
+    damped = TOP_FILE.replace('I3 = { unit = "kg*m^2", value = 4e-5 }',
+                              'I3 = { unit = "kg*m^2", value = 4e-5 }\nc = { unit = "N*m*s", value = 1e-6 }')
+    damped += 'spin_damper = { type = "torque", body = "top", vector = "-c*w3*b3" }\n'
+    path = tmp_path / "damped.toml"
+    path.write_text(damped)
+    s, _ = load_problem(path)
+    sol = s.solve()
+    w3 = speeds_of(s).speeds[2]
+    c, I3 = s.parameters["c"], s.parameters["I3"]
+    acc = {str(k): v for k, v in sol.accelerations.items()}
+    assert sp.simplify(acc["w3_int(t)"] + c * w3 / I3) == 0, acc
+    path.write_text(damped.replace("-c*w3*b3", "-c*dot(w3)*b3"))
+    with pytest.raises(InputError, match=r"dot\(w3\), the rate of the speed w3, is an acceleration"):
+        load_problem(path)

@@ -102,6 +102,8 @@ class Scope:
     vectors: dict[str, Vector] = field(default_factory=dict)
     ambiguous: dict[str, list[str]] = field(default_factory=dict)
     functions: dict[str, Callable] = field(default_factory=dict)
+    #: generalised speeds that are no coordinate's rate (body angular speeds): ``dot(w)`` is ẇ, an acceleration
+    speeds: dict[str, sp.Basic] = field(default_factory=dict)
     #: the highest time derivative ``dot``/``ddot`` may write (2: accelerations; 1: rates only, as in loads)
     max_derivative: int = 2
 
@@ -405,6 +407,8 @@ class _Parser:
         if len(node.args) != 1 or not isinstance(node.args[0], ast.Name):
             raise self.fail(f"{name}() takes the name of one coordinate, e.g. {name}(theta)", node)
         q = node.args[0].id
+        if q in self.scope.speeds and q not in self.scope.coordinates:
+            return self._speed_rate(node, name, q)
         if q not in self.scope.coordinates:
             known = ", ".join(self.scope.coordinates) or "none"
             raise self.fail(f"'{q}' is not a coordinate, so {name}({q}) is not defined", node,
@@ -416,6 +420,17 @@ class _Parser:
                             hint="Write the load in the coordinates and their rates (dot(q)); accelerations are "
                                  "unknowns the laws solve for.")
         return self.scope.coordinates[q].diff(t, 1 if name == "dot" else 2)
+
+    def _speed_rate(self, node: ast.Call, name: str, w: str):
+        """dot(w) of a speed w: its rate ẇ, an acceleration (ddot would be a third derivative)."""
+        if name == "ddot":
+            raise self.fail(f"ddot({w}) is not defined: {w} is a speed, and dot({w}) is already its rate", node,
+                            hint=f"Write dot({w}) for the rate of the speed {w}.")
+        if self.scope.max_derivative < 2:
+            raise self.fail(f"dot({w}), the rate of the speed {w}, is an acceleration and cannot appear here: a "
+                            "load, a constraint or the geometry depends on the state (coordinates and speeds)",
+                            node, hint=f"Write the load in the coordinates and the speeds ({w}).")
+        return self.scope.speeds[w].diff(t)
 
     # results ------------------------------------------------------------------------------------
     def check(self, value):

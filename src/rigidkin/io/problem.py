@@ -326,6 +326,7 @@ class _Builder(ConstraintsAndLoads, Questions):
         group = self.s.speed_groups[name]
         for n, w in zip(group.names, group.speeds):
             self.scope.names[n] = w
+            self.scope.speeds[n] = w
         return fr
 
     @staticmethod
@@ -407,6 +408,10 @@ def system_scope(system, reactions: bool = True) -> Scope:
         sc.coordinates[name] = c.symbol
     for name, fr in system.frames.items():
         sc.add_frame(name, fr.basis, (fr.x, fr.y, fr.z))
+    for group in getattr(system, "speed_groups", {}).values():     # body angular speeds: w, and dot(w) = ẇ
+        for n, w in zip(group.names, group.speeds):
+            sc.names[n] = w
+            sc.speeds[n] = w
     if reactions:
         for c in system.constraints.values():
             for r in c.reactions():
