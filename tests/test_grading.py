@@ -474,7 +474,7 @@ def test_quaternion_top_euler_equations(tmp_path):
            {"kind": "eom", "claim": "I1*dot(w1) + (I3 - I1)*w2*w3 = 2*m*g*l*(e0*e1 + e2*e3)"},
            {"kind": "kinematics", "claim": "omega_B = w1*b1 + w2*b2 + w3*b3"}],
           [({"kind": "eom", "claim": f"{euler} = 0"}, "missing term"),
-           ({"kind": "eom", "claim": f"{euler} = -2*m*g*l*(e0*e1 + e2*e3)"}, "extra term"),
+           ({"kind": "eom", "claim": f"{euler} = -2*m*g*l*(e0*e1 + e2*e3)"}, "has the wrong sign"),
            ({"kind": "eom", "claim": "I1*ddot(w1_int) = 5*m*g*l"}, ""),
            ({"kind": "kinematics", "claim": "omega_B = w1*b1 + w2*b2"}, "component along b3")],
           tmp_path)

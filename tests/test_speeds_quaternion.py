@@ -296,8 +296,16 @@ def test_sleeping_top_file_solve_and_simulate(tmp_path):
     w = speeds_of(s).speeds
     from rigidkin.report.text import solution_text
 
-    listed = [line for line in solution_text(sol).splitlines() if "Euler parameter" in line]
+    listed = [line for line in solution_text(sol).splitlines() if "Euler parameter" in line and "(other)" in line]
     assert len(listed) == 4 and all(line.endswith("[its rate from the speeds: q̇ = W(q) u]") for line in listed)
+    # the printed equations are Euler's, on |e| = 1 (M and f, which the code evaluates, hold for any e)
+    P_ = {str(k): v for k, v in s.parameters.items()}
+    m_, g_, l_, I1_, I3_ = (P_[k] for k in ("m", "g", "l", "I1", "I3"))
+    e0, e1, e2, e3 = e
+    w1, w2, w3 = w
+    euler1 = I1_ * w1.diff(t) + (I3_ - I1_) * w2 * w3 - 2 * m_ * g_ * l_ * (e0 * e1 + e2 * e3)
+    assert sp.expand(sol.eom[0] - euler1) == 0 or sp.expand(sol.eom[0] + euler1) == 0, sol.eom[0]
+    assert "normalised: e₀² + e₁² + e₂² + e₃² = 1" in solution_text(sol)
     P = {str(k): v for k, v in s.parameters.items()}
     rng = np.random.default_rng(3)
     ev = rng.normal(size=4)

@@ -413,6 +413,29 @@ def _readable_plain(expr: sp.Basic) -> sp.Basic:
         return expr
 
 
+def on_unit_quaternions(expr: sp.Basic, groups) -> sp.Basic:
+    """``expr`` on |e| = 1 for each group of Euler parameters (e₀, e₁, e₂, e₃ as functions of time): its
+    numerator and denominator reduced modulo e₀² + e₁² + e₂² + e₃² − 1 (e₀² eliminated, the textbook form
+    1 − 2(e₂² + e₃²)), kept where that is not longer.  For reading only: the engine's equations hold for
+    any e ≠ 0 (its rotation is that of e/|e|), a person's on |e| = 1."""
+    if not groups:
+        return expr
+    plain, back = plain_state(sp.sympify(expr))
+    fwd = {v: k for k, v in back.items()}
+    rels = [sum(fwd[e] ** 2 for e in g) - 1 for g in groups if all(e in fwd for e in g)]
+    if not rels:
+        return expr
+    lead = [fwd[e] for g in groups if all(e in fwd for e in g) for e in g]
+    try:
+        num, den = sp.fraction(sp.together(plain))
+        gens = lead + sorted((num * den).free_symbols - set(lead), key=sp.default_sort_key)
+        out = sp.reduced(sp.expand(num), rels, *gens)[1] / sp.reduced(sp.expand(den), rels, *gens)[1]
+    except (sp.PolynomialError, sp.polys.polyerrors.PolificationFailed, NotImplementedError, ZeroDivisionError):
+        return expr
+    out = out.xreplace(back)
+    return out if _ops(out) <= _ops(expr) else expr
+
+
 def strip_factors(expr: sp.Basic, keep: Iterable[sp.Basic] = ()) -> sp.Basic:
     """Drop the constant factors (numbers, parameter combinations) of an expression ``= 0``.
 

@@ -407,9 +407,12 @@ def _readable_eom(setup, M, f):
     M = M.applyfunc(kin.simplify_expr) if small else M
     f = f.applyfunc(kin.simplify_expr) if small else f
     ref = {k: v for k, v in kin.reference_values().items() if isinstance(k, sp.Symbol)}
+    # Euler parameters are read on |e| = 1 (M and f, which the generated code evaluates, stay as derived)
+    unit = [g.coordinates for g in getattr(setup.system, "speed_groups", {}).values() if g.kind == "quaternion"]
     eom = []
     for i in range(M.rows):
         e = sum((M[i, j] * accels[j] for j in range(len(accels))), sp.Integer(0)) - f[i]
+        e = algebra.on_unit_quaternions(e, unit) if small and unit else e
         e = algebra.strip_factors(e) if small else e
         if len(accels) <= 4 and sp.count_ops(e) < 200:
             e = sp.collect(sp.expand(e), accels, func=lambda c: compact(sp.factor_terms(c)))  # shortest trig form

@@ -78,7 +78,7 @@ _REL = {">": ">", "<": "<", ">=": r"\geq", "<=": r"\leq"}
 def latex_text(sol, spec, answers) -> str:
     import sympy as sp
 
-    from ..printing import latex
+    from ..printing import euler_norms, latex
     from ..report.text import reaction_labels
 
     s = sol.system
@@ -93,7 +93,10 @@ def latex_text(sol, spec, answers) -> str:
         if len(sol.regimes) > 1:
             conds = r" \text{ and } ".join(f"{latex(c.expr)} {_REL[c.relation]} 0" for c in r.conditions)
             out.append(rf"\paragraph{{Regime {i + 1}}} while ${conds}$")
-        out += [r"\paragraph{Equations of motion}", r"\begin{align*}"]
+        out += [r"\paragraph{Equations of motion}"]
+        out += [rf"(the Euler parameters of {frame} normalised, ${latex(n)} = 1$)"
+                for frame, n in euler_norms(sol.system)]
+        out += [r"\begin{align*}"]
         out.append(" \\\\\n".join(f"{latex(e)} &= 0" for e in r.eom))
         out += [r"\end{align*}", r"\paragraph{Reactions}", r"\begin{align*}"]
         names = [k for k in (shown if shown is not None else r.reactions) if k in r.reactions]

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
+from ..printing import euler_norms
 from ..printing import text as plain_text
 from ..trace import SECTIONS
 
@@ -164,7 +165,10 @@ def answers_blocks(solution) -> list:
             out.append(Paragraph(f"Regime {i + 1}, while its condition holds ("
                                  + (", ".join(c.label for c in r.conditions) or "always") + "):"))
             out.append(Equations(tuple(Math(c.expr, c.relation) for c in r.conditions)))
-        out.append(Paragraph("Equations of motion (each = 0 in mass-matrix form):"))
+        norms = euler_norms(solution.system)
+        out.append(Paragraph("Equations of motion (each = 0 in mass-matrix form"
+                             + "".join(f"; the Euler parameters of {frame} normalised, {plain_text(n)} = 1"
+                                       for frame, n in norms) + "):"))
         out.append(Equations(tuple(Math((e, sp.Integer(0))) for e in r.eom)))
         out.append(Paragraph("In normal form:"))
         out.append(Equations(tuple(Math((q.diff(t, 2), a)) for q, a in r.accelerations.items())))

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from sympy.physics.vector import dynamicsymbols
 
-from ..printing import text
+from ..printing import euler_norms, text
 from ..textsafe import terminal_safe
 
 t = dynamicsymbols._t
@@ -103,6 +103,8 @@ def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
                 "by the constraints); the reactions follow from statics", ""]
     elif eom:
         out += ["Equations of motion", ""]
+        for frame, norm in euler_norms(sol.system):
+            out += [f"{_INDENT}(written with the Euler parameters of {frame} normalised: {text(norm)} = 1)", ""]
         for i, e in enumerate(r.eom, start=1):
             out += [f"{_INDENT}({i})  {text(e)} = 0", ""]
         out.append("Accelerations")
