@@ -32,13 +32,13 @@ def atoms_of(exprs: Iterable, types: type | tuple) -> set:
     expressions share most of their subtrees, which ``atoms`` walks again at every occurrence)."""
     seen: set = set()
     out: set = set()
-    stack = []
+    roots = []                  # held here, with every subexpression under them: no id is reused meanwhile
     for e in exprs:
         if isinstance(e, sp.MatrixBase):
-            stack.extend(e)
+            roots.extend(e)
         elif isinstance(e, sp.Basic):
-            stack.append(e)
-    keep = list(stack)                       # the ids below stay those of live objects
+            roots.append(e)
+    stack = list(roots)
     while stack:
         e = stack.pop()
         if id(e) in seen:
@@ -47,7 +47,6 @@ def atoms_of(exprs: Iterable, types: type | tuple) -> set:
         if isinstance(e, types):
             out.add(e)
         stack.extend(e.args)
-    del keep
     return out
 
 

@@ -150,5 +150,6 @@ def euler_norms(system) -> list[tuple[str, object]]:
     equations of motion are written with that sum = 1 (``solution._readable_eom``)."""
     import sympy as sp
 
-    return [(g.frame.name, sp.Add(*[e**2 for e in g.coordinates]))
-            for g in getattr(system, "speed_groups", {}).values() if g.kind == "quaternion"]
+    from .model.speeds import quaternion_groups
+
+    return [(g.frame.name, sp.Add(*[e**2 for e in g.coordinates])) for g in quaternion_groups(system)]

@@ -39,6 +39,7 @@ from .errors import RegimeError, RigidkinError
 from .kinematics import linear_form
 from .linear import solve_linear
 from .mode import ModeSetup
+from .model.speeds import quaternion_groups
 from .printing import latex, text
 from .regime import Condition, Deferred, LazyMap, Regime  # noqa: F401 (Condition, LazyMap: re-exported)
 from .trace import LazyEquations, Trace
@@ -408,7 +409,7 @@ def _readable_eom(setup, M, f):
     f = f.applyfunc(kin.simplify_expr) if small else f
     ref = {k: v for k, v in kin.reference_values().items() if isinstance(k, sp.Symbol)}
     # Euler parameters are read on |e| = 1 (M and f, which the generated code evaluates, stay as derived)
-    unit = [g.coordinates for g in getattr(setup.system, "speed_groups", {}).values() if g.kind == "quaternion"]
+    unit = [g.coordinates for g in quaternion_groups(setup.system)]
     eom = []
     for i in range(M.rows):
         e = sum((M[i, j] * accels[j] for j in range(len(accels))), sp.Integer(0)) - f[i]

@@ -16,6 +16,7 @@ from sympy.physics.vector import Vector, dynamicsymbols, outer
 
 from ..errors import RigidkinError
 from ..laws.newton_euler import body_balances
+from ..model.speeds import quaternion_groups
 from .space import Sampler, plain_accel, to_plain
 
 t = dynamicsymbols._t
@@ -277,8 +278,7 @@ def reference(ref: str, mode: dict | None = None) -> Reference:
     unknowns = [q.diff(t, 2) for q in sol.coordinates] + list(setup.reactions)
     plain_unknowns = [plain_accel(q) for q in sol.coordinates] + list(setup.reactions)
     scope = system_scope(system)
-    quaternions = [tuple(to_plain(e) for e in g.coordinates)
-                   for g in getattr(system, "speed_groups", {}).values() if g.kind == "quaternion"]
+    quaternions = [tuple(to_plain(e) for e in g.coordinates) for g in quaternion_groups(system)]
     r = Reference(ref, system, spec, sol, setup, scope, unknowns, Sampler(plain_unknowns, unit_groups=quaternions))
     r.equations = [e.expr for e in sol.equations]
     _CACHE[key] = r

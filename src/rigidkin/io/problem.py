@@ -324,9 +324,7 @@ class _Builder(ConstraintsAndLoads, Questions):
             fr = self.call(path, self.s.frame, name, parent, basis=basis, description=f.description,
                            sequence=f.sequence, angles=angles, speeds=tuple(f.speeds), rates=rates)
         group = self.s.speed_groups[name]
-        for n, w in zip(group.names, group.speeds):
-            self.scope.names[n] = w
-            self.scope.speeds[n] = w
+        self.scope.add_speeds(group.names, group.speeds)
         return fr
 
     @staticmethod
@@ -409,9 +407,7 @@ def system_scope(system, reactions: bool = True) -> Scope:
     for name, fr in system.frames.items():
         sc.add_frame(name, fr.basis, (fr.x, fr.y, fr.z))
     for group in getattr(system, "speed_groups", {}).values():     # body angular speeds: w, and dot(w) = ẇ
-        for n, w in zip(group.names, group.speeds):
-            sc.names[n] = w
-            sc.speeds[n] = w
+        sc.add_speeds(group.names, group.speeds)
     if reactions:
         for c in system.constraints.values():
             for r in c.reactions():

@@ -48,6 +48,12 @@ class Scope:
         """A copy of this scope in which ``dot``/``ddot`` may write derivatives up to ``order``."""
         return replace(self, max_derivative=order)
 
+    def add_speeds(self, names, speeds) -> None:
+        """Make the speeds known by name (w), with ``dot(w)`` their rate."""
+        for n, w in zip(names, speeds):
+            self.names[n] = w
+            self.speeds[n] = w
+
     def add_frame(self, name: str, basis: tuple[str, str, str], unit_vectors: tuple[Vector, Vector, Vector]):
         """Make ``name.x/.y/.z`` and ``name.<basis>`` known, and each basis name alone when unambiguous."""
         axes = dict(zip(("x", "y", "z"), unit_vectors))

@@ -212,6 +212,11 @@ def is_quasi(system, q) -> bool:
     return any(q in g.quasi for g in getattr(system, "speed_groups", {}).values())
 
 
+def quaternion_groups(system) -> list[SpeedGroup]:
+    """The speed groups of the frames that ``system`` orients by Euler parameters."""
+    return [g for g in getattr(system, "speed_groups", {}).values() if g.kind == "quaternion"]
+
+
 def require_rate_speeds(system, what: str) -> None:
     """Refuse, in one paragraph, a closed-form analysis (``what``) that linearises in q and q̇ when the
     system's speeds are not the coordinate rates (body angular-velocity components, quaternions)."""

@@ -117,10 +117,9 @@ class RegimeFunctions:
             self._react = compile_functions(args_acc, [lay.to_plain(e) for e in (*Ar, *rhs)])
         # stage 3
         qdot, udot = [], []
-        from ..model.speeds import STABILISATION
+        from ..model.speeds import STABILISATION, quaternion_groups
         # Euler parameters: ė = ½Q(e)w + k(1 − |e|²)e holds |e| at 1 (the frame turns by e/|e|: no physical change)
-        euler = {e: g.coordinates for g in getattr(solution.system, "speed_groups", {}).values()
-                 if g.kind == "quaternion" for e in g.coordinates}
+        euler = {e: g.coordinates for g in quaternion_groups(solution.system) for e in g.coordinates}
         for q in lay.coordinates:
             if q in self.independent:
                 qdot.append(q.diff(t))
