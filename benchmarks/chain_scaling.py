@@ -83,7 +83,8 @@ def relative(theta):
 
 
 def measure_articulated(n, use_c=True):
-    from rigidkin.numeric.articulated import ArticulatedModel
+    from rigidkin.numeric.large.articulated import ArticulatedModel
+
     from rigidkin.numeric.state import parameter_vector
 
     s = chain(n)
@@ -131,7 +132,7 @@ def _child(kind, n, out):
             f = lambda: model.rates(0.0, next(ys), p)                              # noqa: E731
             acc = lambda: model.rates(0.0, y, p)[n:2 * n]                          # noqa: E731
         else:
-            from rigidkin.numeric.projected import ProjectedModel
+            from rigidkin.numeric.large.projected import ProjectedModel
 
             rhs = ProjectedModel(s).rhs()
             y = np.concatenate([q, u])

@@ -18,7 +18,7 @@ class TimeLimit(Exception):
 
 def time_limit(seconds: float | None):
     """Interrupt the block after ``seconds`` (main thread, POSIX) with TimeLimit."""
-    from rigidkin.algebra import time_limit as limit
+    from rigidkin.base.algebra import time_limit as limit
 
     return limit(seconds, TimeLimit)
 

@@ -35,8 +35,8 @@ def kane_on_model(name: str):
     from sympy.physics.vector import dynamicsymbols
 
     from rigidkin import examples
-    from rigidkin.laws.mechanics_model import build
-    from rigidkin.mode import setup_mode
+    from rigidkin.derive.laws.mechanics_model import build
+    from rigidkin.derive.mode import setup_mode
 
     t = dynamicsymbols._t
     setup = setup_mode(examples.build(name))
@@ -176,10 +176,10 @@ def examples_table(repeats: int, limit: float) -> str:
 
 
 def chain_table(ns, repeats: int, solve_limit: float, eq_limit: float) -> str:
+    from rigidkin.derive.laws import newton_euler
+    from rigidkin.derive.mode import setup_mode
     from rigidkin.examples import chain
-    from rigidkin.laws import newton_euler
-    from rigidkin.mode import setup_mode
-    from rigidkin.numeric.codegen import kernel, operation_count
+    from rigidkin.numeric.compiled.codegen import kernel, operation_count
 
     rows = []
     solve_ok = eq_ok = True

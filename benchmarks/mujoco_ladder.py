@@ -84,7 +84,7 @@ def run_mujoco(theta0: float, dt: float, integrator: str, t_max: float = 10.0):
 def run_rigidkin(theta0: float):
     from rigidkin import examples
     from rigidkin.numeric import simulate
-    from rigidkin.numeric.sweep import sweep
+    from rigidkin.numeric.sweeps.sweep import sweep
 
     s = examples.build("ladder")
     sweep(s, {"theta": [theta0]}, stop_at="N_A")               # derive and compile (cached)

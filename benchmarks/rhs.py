@@ -68,7 +68,7 @@ int hand_rhs_batch(long n, const double *t, const double *y, const double *p, do
 
 
 def hand_model(source: str, ny: int, np_: int):
-    from rigidkin.numeric.codegen import _build
+    from rigidkin.numeric.compiled.codegen import _build
 
     src = source + f"\n#define NY {ny}\n#define NP {np_}\n" + _BATCH
     return _build(src, "int hand_rhs(double, const double *, const double *, double *);\n"
@@ -76,7 +76,7 @@ def hand_model(source: str, ny: int, np_: int):
 
 
 def measure(name: str, system, hand_source: str, states: np.ndarray, params: np.ndarray, form: str = "auto"):
-    from rigidkin.numeric.codegen import compile_model, fast_rhs, kernel
+    from rigidkin.numeric.compiled.codegen import compile_model, fast_rhs, kernel
     from rigidkin.numeric.state import StateLayout
 
     k = kernel(system, form=form)

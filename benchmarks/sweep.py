@@ -41,7 +41,7 @@ from scipy.integrate import solve_ivp
 
 def lambdified(system, reaction: str | None = None):
     """(rhs(t, y), event(t, y) or None, p): plain lambdify of the solved rates and of a reaction."""
-    from rigidkin.numeric.codegen import kernel
+    from rigidkin.numeric.compiled.codegen import kernel
     from rigidkin.numeric.state import StateLayout, parameter_vector
 
     k = kernel(system)
@@ -89,8 +89,8 @@ def baseline(rhs, event, Y0, t_end, runs: int):
 
 def ladder_rows(runs: int, base_runs: int, dask: bool):
     from rigidkin import examples
-    from rigidkin.numeric.batch import default_workers
-    from rigidkin.numeric.sweep import sweep
+    from rigidkin.numeric.compiled.batch import default_workers
+    from rigidkin.numeric.sweeps.sweep import sweep
 
     s = examples.build("ladder")
     vary = {"theta": (0.05, 1.3, runs)}
@@ -137,7 +137,7 @@ def ladder_rows(runs: int, base_runs: int, dask: bool):
 
 def chain_rows(runs: int, base_runs: int):
     from rigidkin.examples import chain
-    from rigidkin.numeric.sweep import sweep
+    from rigidkin.numeric.sweeps.sweep import sweep
 
     s = chain.build(5)
     vary = {"theta1": (0.1, 1.5, runs)}
@@ -186,8 +186,8 @@ vary = {n: cmd.parse_axis(v, n) for n, v in cmd._pairs(args.param, "--param").it
 mark("imports and options")
 rec = None
 if hasattr(cmd, "_from_record"):             # the numeric record (a repeated sweep): no sympy, nothing derived
-    from rigidkin.derivation_cache import read_kept
-    from rigidkin.numeric.sweep_record import SUFFIX, run
+    from rigidkin.io.derivation_cache import read_kept
+    from rigidkin.numeric.sweeps.sweep_record import SUFFIX, run
     rec = read_kept(args.problem, cmd._record_options(args, {}), SUFFIX)
 if rec is not None:
     mark("numeric record read (signed JSON)")
@@ -202,10 +202,10 @@ else:
     system = problem.system if problem else common.load_system(args.problem)[0]
     mark("problem read" + (" (derivation cache hit)" if getattr(problem, "hit", False) else ""))
     system.solve()
-    from rigidkin.numeric.codegen import compile_kernel, kernel
+    from rigidkin.numeric.compiled.codegen import compile_kernel, kernel
     model = compile_kernel(kernel(system))
     mark("derivation, kernel and compiled library")
-    from rigidkin.numeric.sweep import sweep
+    from rigidkin.numeric.sweeps.sweep import sweep
     res = sweep(system, vary, stop_at=args.stop_at or None, workers=args.threads)
     mark("sweep (integration)")
     res.write(args.output)
@@ -248,7 +248,7 @@ def command_rows(runs: int, base_runs: int, repeats: int):
     """The whole ``rigidkin sweep`` of ``runs`` ladders (CSV, Parquet) against the solve_ivp loop, interleaved:
     each repeat runs the commands and then a slice of the loop's sample, so that both meet the same load."""
     from rigidkin import examples
-    from rigidkin.numeric.sweep import plan
+    from rigidkin.numeric.sweeps.sweep import plan
 
     try:
         import pyarrow.parquet  # noqa: F401

@@ -15,10 +15,10 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 import rigidkin as rk
-from rigidkin import algebra
 from rigidkin.analysis.steady import linearise, residual
+from rigidkin.base import algebra
+from rigidkin.derive.kinematics import Kinematics
 from rigidkin.examples import rolling_disk
-from rigidkin.kinematics import Kinematics
 
 t = dynamicsymbols._t
 lam = sp.Symbol("lambda")

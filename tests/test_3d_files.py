@@ -13,9 +13,9 @@ import random
 import pytest
 import sympy as sp
 
+from rigidkin.derive.kinematics import Kinematics
 from rigidkin.examples import HERE, build
 from rigidkin.io.problem import load_problem
-from rigidkin.kinematics import Kinematics
 
 EXAMPLES = ["heavy-top", "torque-free", "rolling-disk", "gyroscope"]
 

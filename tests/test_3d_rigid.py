@@ -17,8 +17,8 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 import rigidkin as rk
-from rigidkin import algebra
 from rigidkin.analysis.steady import linearise, residual
+from rigidkin.base import algebra
 from rigidkin.examples import gyroscope, heavy_top, torque_free
 from rigidkin.model.principal import principal_axes
 
@@ -122,7 +122,7 @@ def test_energy_and_angular_momentum_are_conserved_in_simulation(book):
     assert res.status == "completed"
     assert res.energy_drift < 1e-9
     body = s.bodies["book"]
-    from rigidkin.kinematics import Kinematics
+    from rigidkin.derive.kinematics import Kinematics
 
     kin = Kinematics(s)
     w = kin.omega_of(body)

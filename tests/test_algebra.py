@@ -5,8 +5,8 @@ import time
 import pytest
 import sympy as sp
 
-from rigidkin import algebra
-from rigidkin.algebra import readable, time_limit, trig_reduce
+from rigidkin.base import algebra
+from rigidkin.base.algebra import readable, time_limit, trig_reduce
 
 
 class Outer(Exception):

@@ -7,7 +7,7 @@ results printed in its §5 (also in sympy's ``physics/mechanics/tests/test_kane3
 and in BicycleParameters' ``benchmark_matrices``); the eigenvalues are the paper's Table 2 (b)-(c)
 at v = 0, 1, ..., 10 m/s, as transcribed in D. L. Peterson's Whipple eigenvalue test (14 decimals);
 the weave and capsize speeds are Table 2 (a).  Nothing here is computed from these numbers: the
-model is built from Table 1's parameters only and linearised by rigidkin.numeric.projected.
+model is built from Table 1's parameters only and linearised by rigidkin.numeric.large.projected.
 """
 
 from __future__ import annotations

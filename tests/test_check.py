@@ -5,9 +5,9 @@ from sympy import cos, sin
 from sympy.physics.vector import dynamicsymbols
 
 import rigidkin as rk
+from rigidkin.base.printing import text
+from rigidkin.derive.laws.crosscheck import compare, cross_check, expectation, numerically_equal
 from rigidkin.examples import build
-from rigidkin.laws.crosscheck import compare, cross_check, expectation, numerically_equal
-from rigidkin.printing import text
 
 t = dynamicsymbols._t
 
@@ -50,7 +50,7 @@ def _pendulum(shape):
 
 
 def test_a_disagreement_is_reported_with_both_expressions():
-    from rigidkin.laws.crosscheck import _compare_solutions
+    from rigidkin.derive.laws.crosscheck import _compare_solutions
 
     good = _pendulum(lambda m, l: rk.shapes.SlenderRod(m, l, axis="y")).solve()
     wrong = _pendulum(lambda m, l: rk.shapes.PointMass(m)).solve()    # a different inertia

@@ -72,7 +72,7 @@ def test_units_load_without_dask_and_keep_pints_definitions(tmp_path):
     and pint's parsed definitions are kept in the private cache folder (the next registry is faster)."""
     env = {**os.environ, "RIGIDKIN_CACHE": str(tmp_path / "cache")}
     env.pop("RIGIDKIN_NO_CACHE", None)
-    code = ("import sys, importlib.util\nfrom rigidkin.units import registry, to_si\nr = registry()\n"
+    code = ("import sys, importlib.util\nfrom rigidkin.base.units import registry, to_si\nr = registry()\n"
             "assert abs(to_si('30 cm', 'm', 'x') - 0.3) < 1e-15\n"
             "print('dask' in sys.modules)\n"
             "if importlib.util.find_spec('dask'):\n    import dask\n    print('dask imports', bool(dask.__version__))")

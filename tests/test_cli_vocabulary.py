@@ -75,6 +75,6 @@ def test_sweep_stops_at_the_event_simulate_names(capsys, tmp_path):
     import numpy as np
 
     from rigidkin.examples import build
-    from rigidkin.numeric.sweep import sweep
+    from rigidkin.numeric.sweeps.sweep import sweep
     res = sweep(build("ladder"), {"theta": [0.2, 0.4]}, stop_at="contact A opens", record=["N_A"], t_end=3.0)
     assert np.allclose(np.cos(res.event_state("N_A", "theta")) / np.cos([0.2, 0.4]), 2 / 3, rtol=1e-8)

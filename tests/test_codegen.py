@@ -1,4 +1,4 @@
-"""Generated code (rigidkin.numeric.codegen): values against closed forms, KanesMethod and momentum balance."""
+"""Generated code (rigidkin.numeric.compiled.codegen): values against closed forms, KanesMethod and momentum balance."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import sympy.physics.mechanics as me
 
 import rigidkin as rk
 from rigidkin.examples import chain
-from rigidkin.numeric import codegen
+from rigidkin.numeric.compiled import codegen
 
 G = 9.81
 

@@ -246,7 +246,7 @@ def test_rod_falling_flat_onto_two_supports_takes_both_impulses_at_once(e):
 
 # (c) the contact problem over all contacts: Painlevé's paradox is reported, not guessed ----------------
 def test_painleve_rod_reported_with_the_critical_coefficient():
-    from rigidkin.numeric.contact_modes import ContactParadox
+    from rigidkin.numeric.contacts.contact_modes import ContactParadox
 
     # a rod (half-length a) leaning at tan θ = 2 with its lower end sliding away from its centre:
     # N = m g / (1 + 3cos²θ − 3µ sinθ cosθ) by hand, which changes sign through ∞ at µ* = 4/3
@@ -395,7 +395,7 @@ def test_statically_indeterminate_rest_is_reported_with_what_is_determined():
 
 
 def test_painleve_non_uniqueness_is_reported_not_guessed():
-    from rigidkin.numeric.contact_modes import ContactParadox
+    from rigidkin.numeric.contacts.contact_modes import ContactParadox
 
     # the same rod turning fast (θ̇² > g/(a sin θ)): N = m(g − a sinθ θ̇²)/(1 + 3cos²θ − 3µ sinθ cosθ) > 0
     # while sliding, and the free end A would also rise (ÿ_A = −g + a sinθ θ̇² > 0) if it opened

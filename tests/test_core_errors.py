@@ -4,7 +4,7 @@ import pytest
 import sympy as sp
 
 import rigidkin as rk
-from rigidkin.errors import ConstraintError, ModelError
+from rigidkin.base.errors import ConstraintError, ModelError
 
 
 def pendulum():

@@ -16,9 +16,9 @@ import warnings
 
 import pytest
 
-from rigidkin import derivation_cache as dc
 from rigidkin.cli import main
 from rigidkin.commands import common
+from rigidkin.io import derivation_cache as dc
 
 
 @pytest.fixture(scope="module")

@@ -8,9 +8,10 @@ import random
 import sympy as sp
 from sympy.physics.vector import ReferenceFrame, dynamicsymbols
 
-from rigidkin import algebra, examples, vectorops
-from rigidkin.linear import _split_by_diff, linear_form
-from rigidkin.mode import setup_mode
+from rigidkin import examples
+from rigidkin.base import algebra, vectorops
+from rigidkin.base.linear import _split_by_diff, linear_form
+from rigidkin.derive.mode import setup_mode
 
 t = dynamicsymbols._t
 

@@ -5,7 +5,7 @@ import sympy as sp
 from sympy import sin
 from sympy.physics.vector import dynamicsymbols
 
-from rigidkin.analysis.dimensions import (
+from rigidkin.base.dimensions import (
     FORCE,
     DimensionMismatch,
     check_equation,
@@ -13,8 +13,8 @@ from rigidkin.analysis.dimensions import (
     dimension_of,
     symbol_dimensions,
 )
+from rigidkin.base.units import LENGTH, MASS, ONE, TIME
 from rigidkin.examples import build
-from rigidkin.units import LENGTH, MASS, ONE, TIME
 
 t = dynamicsymbols._t
 
@@ -74,7 +74,7 @@ def test_other_laws_equations_are_consistent(method):
 
 
 def test_answers_of_the_impulse_and_energy_laws_have_the_right_dimensions():
-    from rigidkin.laws import energy, impulse
+    from rigidkin.derive.laws import energy, impulse
 
     s = build("rod-impulse")
     th = s.coordinates[0]

@@ -85,7 +85,7 @@ def test_docstrings_read_as_markdown():
     """Sphinx roles become code and a doctest session a fenced block (its brackets are not links)."""
     md = _hook("griffe_docstrings").markdown
     assert md("See :func:`rigidkin.report.fbd.free_body_diagram`.") == "See `rigidkin.report.fbd.free_body_diagram`."
-    assert md(":class:`~rigidkin.solution.Solution`") == "`Solution`"
+    assert md(":class:`~rigidkin.derive.solution.Solution`") == "`Solution`"
     text = "Example:\n\n>>> xs = [1, 2, 3]\n>>> xs[:2]\n[1, 2]\n\nAfter."
     assert md(text) == "Example:\n\n```pycon\n>>> xs = [1, 2, 3]\n>>> xs[:2]\n[1, 2]\n```\n\nAfter."
 

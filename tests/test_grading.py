@@ -13,8 +13,8 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
+from rigidkin.base.errors import InputError
 from rigidkin.cli import main
-from rigidkin.errors import InputError
 from rigidkin.grading import grade, parse_worksheet
 from rigidkin.grading.report import as_data, as_html
 

@@ -367,7 +367,7 @@ def test_the_hard_stops_of_the_time_limit(how, status, words, bound):
 def test_solve_exits_1_when_a_question_is_left_unanswered(monkeypatch, capsys, folder):
     """A question the engine cannot answer is said in the output, and the status says so (1, not 0)."""
     import rigidkin.analysis.answers as answers
-    from rigidkin.errors import RigidkinError
+    from rigidkin.base.errors import RigidkinError
 
     problem = folder / "asks.toml"
     problem.write_text(pendulum() + '[[ask.question]]\nkind = "event"\nname = "swing"\nwhen = "theta = 0"\n'

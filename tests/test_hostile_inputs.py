@@ -23,10 +23,10 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import rigidkin as rk
+from rigidkin.base.errors import InputError, ModelError, RigidkinError
+from rigidkin.base.units import LENGTH, ONE, parse_quantity
 from rigidkin.cli import main
-from rigidkin.errors import InputError, ModelError, RigidkinError
 from rigidkin.io.problem import parse_problem
-from rigidkin.units import LENGTH, ONE, parse_quantity
 
 CPU_LIMIT = 2.0                 # seconds of CPU time per case
 MEMORY_LIMIT = 500 * 2**20      # bytes of growth of the peak resident set per case
@@ -110,7 +110,7 @@ def bounded(name: str):
 @pytest.fixture(scope="module", autouse=True)
 def warm():
     """Import what the command line imports lazily, so that the bounds measure the case itself."""
-    from rigidkin.units import registry
+    from rigidkin.base.units import registry
 
     registry()
     parse_problem(PENDULUM, "warm.toml")

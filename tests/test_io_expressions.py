@@ -7,7 +7,7 @@ import pytest
 import sympy as sp
 from sympy.physics.vector import ReferenceFrame, Vector, dynamicsymbols
 
-from rigidkin.errors import InputError
+from rigidkin.base.errors import InputError
 from rigidkin.io.expressions import (
     MAX_EXPONENT,
     Scope,

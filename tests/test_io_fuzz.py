@@ -11,7 +11,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from sympy.physics.vector import ReferenceFrame, Vector, dynamicsymbols
 
-from rigidkin.errors import RigidkinError
+from rigidkin.base.errors import RigidkinError
 from rigidkin.examples import HERE
 from rigidkin.io.expressions import default_scope, parse, parse_condition, parse_equation
 from rigidkin.io.problem import build_problem, parse_problem

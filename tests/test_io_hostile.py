@@ -291,7 +291,7 @@ def test_missing_and_directory_paths(tmp_path, capsys):
 def test_debug_shows_the_traceback(tmp_path):
     f = tmp_path / "bad.toml"
     f.write_text(sub('at = "G"', 'at = "Q"'))
-    from rigidkin.errors import ModelError
+    from rigidkin.base.errors import ModelError
 
     with pytest.raises(ModelError):
         main(["--debug", "validate", str(f)])

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from rigidkin import examples
-from rigidkin.errors import RigidkinError
+from rigidkin.base.errors import RigidkinError
 from rigidkin.numeric.simulate import simulate
 
 T_END = 0.5

@@ -6,10 +6,10 @@ from helpers import values_match
 from sympy import cos, sin
 from sympy.physics.vector import dynamicsymbols
 
-from rigidkin.errors import ModelError
+from rigidkin.base.errors import ModelError
+from rigidkin.derive.laws import about_point
+from rigidkin.derive.mode import setup_mode
 from rigidkin.examples import build
-from rigidkin.laws import about_point
-from rigidkin.mode import setup_mode
 
 t = dynamicsymbols._t
 

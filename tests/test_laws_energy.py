@@ -6,9 +6,9 @@ from helpers import values_match
 from sympy import cos, sin
 from sympy.physics.vector import dynamicsymbols
 
+from rigidkin.derive.laws import energy as E
+from rigidkin.derive.mode import setup_mode
 from rigidkin.examples import build
-from rigidkin.laws import energy as E
-from rigidkin.mode import setup_mode
 
 t = dynamicsymbols._t
 

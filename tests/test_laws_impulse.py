@@ -5,9 +5,9 @@ import sympy as sp
 from sympy import cos, sin, sqrt
 from sympy.physics.vector import dynamicsymbols
 
-from rigidkin.errors import RigidkinError
+from rigidkin.base.errors import RigidkinError
+from rigidkin.derive.laws import energy, impulse
 from rigidkin.examples import build
-from rigidkin.laws import energy, impulse
 
 t = dynamicsymbols._t
 

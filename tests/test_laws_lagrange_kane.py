@@ -6,8 +6,8 @@ from helpers import values_match
 from sympy import sin
 from sympy.physics.vector import dynamicsymbols
 
+from rigidkin.derive.laws import NotApplicable
 from rigidkin.examples import build
-from rigidkin.laws import NotApplicable
 
 t = dynamicsymbols._t
 

@@ -15,7 +15,7 @@ import pytest
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from rigidkin.printing import dotted, greek, text
+from rigidkin.base.printing import dotted, greek, text
 from rigidkin.report.notation import latex, mathml
 
 t = dynamicsymbols._t

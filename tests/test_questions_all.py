@@ -19,10 +19,11 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from rigidkin import algebra, examples
+from rigidkin import examples
 from rigidkin.analysis.answers import answer
 from rigidkin.analysis.questions import KINDS, Answer
-from rigidkin.errors import RigidkinError
+from rigidkin.base import algebra
+from rigidkin.base.errors import RigidkinError
 from rigidkin.io.problem import load_problem, parse_problem
 from rigidkin.io.results import solution_data
 

@@ -13,11 +13,11 @@ from sympy.physics.vector import dynamicsymbols
 
 import rigidkin as rk
 from rigidkin import examples
+from rigidkin.base.trace import SECTIONS
 from rigidkin.cli import main
 from rigidkin.report import REPORT_SECTIONS, build_document, render
 from rigidkin.report.document import Equations, Step
 from rigidkin.report.notation import latex, mathml, split_label
-from rigidkin.trace import SECTIONS
 
 t = dynamicsymbols._t
 

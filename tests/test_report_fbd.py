@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from rigidkin import examples
-from rigidkin.mode import setup_mode
+from rigidkin.derive.mode import setup_mode
 from rigidkin.report.fbd import free_body_diagram
 from rigidkin.report.geometry import Geometry
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import rigidkin as rk
-from rigidkin.errors import InputError, RigidkinError
+from rigidkin.base.errors import InputError, RigidkinError
 from rigidkin.examples import build
 from rigidkin.numeric import SimulationError, make_rhs, simulate
 from rigidkin.numeric.rhs import RHS

@@ -19,12 +19,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from rigidkin.numeric.large.projected import ProjectedModel
 from scipy.integrate import solve_ivp
 from sympy.physics.vector import ReferenceFrame, dynamicsymbols
 
 import rigidkin as rk
 from rigidkin.model.speeds import quaternion_from_axis_angle, quaternion_matrix, speeds_of
-from rigidkin.numeric.projected import ProjectedModel
 
 t = dynamicsymbols._t
 
@@ -378,7 +378,7 @@ def test_bad_quaternion_frames_in_files(tmp_path, old, new, field):
 def test_loads_read_the_speeds_by_name(tmp_path):
     """A file's loads may use a frame's speeds (a spin damper −c w3 b3): the top's spin then decays as
     ẇ3 = −c w3 / I3.  Their rates, accelerations, are refused in a load with one paragraph."""
-    from rigidkin.errors import InputError
+    from rigidkin.base.errors import InputError
     from rigidkin.io.problem import load_problem
 
     damped = TOP_FILE.replace('I3 = { unit = "kg*m^2", value = 4e-5 }',

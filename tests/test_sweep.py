@@ -12,9 +12,9 @@ from scipy.integrate import solve_ivp
 import rigidkin as rk
 from rigidkin.cli import main
 from rigidkin.examples import chain
-from rigidkin.numeric import codegen
+from rigidkin.numeric.compiled import codegen
 from rigidkin.numeric.rhs import make_rhs
-from rigidkin.numeric.sweep import sweep
+from rigidkin.numeric.sweeps.sweep import sweep
 
 G = 9.81
 needs_c = pytest.mark.skipif(not codegen.c_available(), reason="no C compiler")

@@ -19,10 +19,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from rigidkin import derivation_cache as dc
 from rigidkin.cli import main
 from rigidkin.commands import common
-from rigidkin.numeric import exprtree
+from rigidkin.io import derivation_cache as dc
+from rigidkin.numeric.sweeps import exprtree
 
 
 # expression trees --------------------------------------------------------------------------------

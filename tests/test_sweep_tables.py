@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from rigidkin import examples
+from rigidkin.base.textsafe import safe_csv_cell
 from rigidkin.cli import main
-from rigidkin.numeric.sweep import sweep
-from rigidkin.numeric.tables import csv_text_blocks, table_format, write_csv, write_parquet
-from rigidkin.textsafe import safe_csv_cell
+from rigidkin.numeric.sweeps.sweep import sweep
+from rigidkin.numeric.sweeps.tables import csv_text_blocks, table_format, write_csv, write_parquet
 
 
 @pytest.fixture(scope="module")
@@ -105,7 +105,7 @@ def test_csv_is_written_whole_or_not_at_all(tmp_path):
     cols = {"run": np.arange(3), "x": np.array([1.0, math.nan, 2.5])}
     path = write_csv(cols, tmp_path / "t.csv")
     assert path.read_bytes().decode() == "run,x\r\n0,1.0\r\n1,\r\n2,2.5\r\n"
-    from rigidkin.outfile import OutputError
+    from rigidkin.base.outfile import OutputError
 
     with pytest.raises(OutputError, match="does not exist"):
         write_csv(cols, tmp_path / "missing" / "t.csv")
@@ -156,7 +156,7 @@ def test_parquet_without_pyarrow_is_refused_before_the_sweep(tmp_path, capsys, m
         monkeypatch.delitem(sys.modules, name)
     monkeypatch.setitem(sys.modules, "pyarrow", None)                    # import pyarrow → ImportError
     monkeypatch.setitem(sys.modules, "pyarrow.parquet", None)
-    import rigidkin.numeric.sweep as numeric_sweep
+    import rigidkin.numeric.sweeps.sweep as numeric_sweep
 
     monkeypatch.setattr(numeric_sweep, "sweep", lambda *a, **k: pytest.fail("the sweep ran"))
     out = tmp_path / "runs.parquet"

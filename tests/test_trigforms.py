@@ -1,4 +1,4 @@
-"""Compact trig forms for printing (rigidkin.trigforms): equal to the input, never longer, hash-seed free."""
+"""Compact trig forms for printing (rigidkin.base.trigforms): equal to the input, never longer, hash-seed free."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from rigidkin.trigforms import compact, length
+from rigidkin.base.trigforms import compact, length
 
 x, y = sp.symbols("x y", real=True)
 a, b, M, m, I1, I3 = sp.symbols("a b M m I1 I3", positive=True)
@@ -106,7 +106,7 @@ def test_small_trig_polynomials(terms, den):
 
 PROGRAM = """
 import sympy as sp
-from rigidkin.trigforms import compact
+from rigidkin.base.trigforms import compact
 x, y = sp.symbols('x y', real=True)
 a, b, M, m, I1, I3 = sp.symbols('a b M m I1 I3', positive=True)
 S, C = sp.sin(x), sp.cos(x)
@@ -130,7 +130,7 @@ def test_same_result_under_every_hash_seed():
 def test_collar_force_card_prints_sin_squared():
     """The bundled card's θ̈ and N read over 1 + 3 sin²θ (they read over −4 + 3 cos²θ before)."""
     from rigidkin import examples
-    from rigidkin.printing import text
+    from rigidkin.base.printing import text
 
     s = examples.build("collar-force")
     sol = s.solve()
@@ -168,7 +168,7 @@ def test_a_negated_product_keeps_its_sign():
 
 def test_compact_never_changes_a_value(monkeypatch):
     """The guard: a rewriting that would change the value is refused (checked at random states)."""
-    from rigidkin import trigforms
+    from rigidkin.base import trigforms
 
     a = sp.Symbol("a", positive=True)
     assert trigforms._same_value(a * S**2 + a * C**2, a)

@@ -10,7 +10,7 @@ import pytest
 import sympy as sp
 
 import rigidkin as rk
-from rigidkin.errors import RigidkinError
+from rigidkin.base.errors import RigidkinError
 from rigidkin.io.problem import parse_problem
 
 t = sp.Symbol("t")
@@ -264,7 +264,7 @@ def test_reports_list_the_definitions():
 def test_an_undecided_comparison_is_said_so_not_called_a_disagreement():
     """The "how decided" column and the verdict say the same thing (issue 15: a check that could evaluate
     only 1 of 24 states read "disagrees")."""
-    from rigidkin.laws.crosscheck import Verdict, _status
+    from rigidkin.derive.laws.crosscheck import Verdict, _status
 
     how = "numeric: only 1 of 24 random states could be evaluated (undecided)"
     assert _status(False, how) == "undecided" and _status(False, "numeric: 24 random states") == "disagrees"

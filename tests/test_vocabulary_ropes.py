@@ -11,7 +11,7 @@ import sympy as sp
 from test_vocabulary import rolling_disk
 
 import rigidkin as rk
-from rigidkin.errors import RigidkinError
+from rigidkin.base.errors import RigidkinError
 from rigidkin.io.problem import parse_problem
 
 t = sp.Symbol("t")

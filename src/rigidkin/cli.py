@@ -23,10 +23,10 @@ import os
 import sys
 import warnings
 
+from .base.errors import RigidkinError
+from .base.textsafe import terminal_safe
 from .commands.deadline import TimeLimitReached, deadline
 from .commands.options import EXIT_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_TIME, Parser
-from .errors import RigidkinError
-from .textsafe import terminal_safe
 
 COMMANDS = ("solve", "list", "validate", "check", "simulate", "sweep", "report", "grade", "variants")
 

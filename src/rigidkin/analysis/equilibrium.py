@@ -16,10 +16,10 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from .. import algebra
-from ..errors import RigidkinError
+from ..base import algebra
+from ..base.errors import RigidkinError
+from ..base.printing import text
 from ..model.speeds import require_rate_speeds
-from ..printing import text
 from .events import SOLVE_SECONDS, _num, numeric_values
 from .integrals import single_regime
 

@@ -20,9 +20,9 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from .. import algebra
-from ..errors import RegimeError, RigidkinError
-from ..printing import text
+from ..base import algebra
+from ..base.errors import RegimeError, RigidkinError
+from ..base.printing import text
 from .integrals import along_motion, energy_integral, single_regime
 from .states import at_state, full_state, state_from_names
 
@@ -205,7 +205,7 @@ def event_by_simulation(solution, when, start: dict | None = None, name: str = "
     exactly such a switch it is that switch's time and state.  A condition on a reaction holds only in
     the mode it was written for, so the answer says so when the mode changes first.
     """
-    from ..errors import InputError
+    from ..base.errors import InputError
     from ..numeric.simulate import Phase as SimPhase
     from ..numeric.simulate import simulate
 

@@ -18,8 +18,8 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from .. import algebra
-from ..errors import RigidkinError
+from ..base import algebra
+from ..base.errors import RigidkinError
 from .states import at_state, full_state
 
 t = dynamicsymbols._t
@@ -155,7 +155,7 @@ def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
     Each candidate is kept only if its rate along the motion (accelerations substituted) vanishes
     identically, so a dissipative system simply has no energy integral in the list.
     """
-    from ..laws.energy import kinetic_energy, potential_energy
+    from ..derive.laws.energy import kinetic_energy, potential_energy
 
     regime = single_regime(solution)
     setup = solution.setup

@@ -17,9 +17,9 @@ from dataclasses import dataclass, field
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from .. import algebra
-from ..errors import RigidkinError
-from ..printing import text
+from ..base import algebra
+from ..base.errors import RigidkinError
+from ..base.printing import text
 from .events import _num, condition_expression, numeric_values
 
 t = dynamicsymbols._t

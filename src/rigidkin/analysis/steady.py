@@ -22,8 +22,8 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from .. import algebra
-from ..errors import RigidkinError
+from ..base import algebra
+from ..base.errors import RigidkinError
 from ..model.speeds import require_rate_speeds
 
 t = dynamicsymbols._t
@@ -131,7 +131,7 @@ def linearise(solution, at: Mapping, check: bool = True) -> SteadyMotion:
                             f"{', '.join(q.func.__name__ for q in extra)}, which no integrated relation gives.",
                             where="steady motion",
                             hint="Linearise a model whose dependent coordinates are integrated, or use "
-                                 "rigidkin.numeric.projected for large constrained systems.")
+                                 "rigidkin.numeric.large.projected for large constrained systems.")
     ignorable = tuple(q for q in qs if q not in present)
     kept = [q for q in qs if q not in ignorable]
     point = _point(solution, at)

@@ -45,8 +45,8 @@ def parse_expectation(text: str, system):
 
 
 def run(args) -> int:
-    from ..printing import text
-    from ..textsafe import terminal_safe
+    from ..base.printing import text
+    from ..base.textsafe import terminal_safe
     from .common import guarded, json_safe, open_problem, progress, with_file
     from .options import parse_modes
 
@@ -56,12 +56,12 @@ def run(args) -> int:
     expected = [(e, parse_expectation(e, system)) for e in args.expect]
     laws = None if args.laws is None else [w.strip() for w in args.laws.split(",") if w.strip()]
     if laws is not None:
-        from ..laws import parse_method
+        from ..derive.laws import parse_method
 
         for w in laws:
             parse_method(w)
-    from ..errors import RigidkinError
-    from ..laws.crosscheck import cross_check, expectation
+    from ..base.errors import RigidkinError
+    from ..derive.laws.crosscheck import cross_check, expectation
 
     try:
         with progress("Deriving by every law"):

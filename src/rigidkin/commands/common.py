@@ -8,7 +8,7 @@ import threading
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..errors import RigidkinError
+from ..base.errors import RigidkinError
 
 
 def load_system(problem: str):
@@ -36,9 +36,9 @@ def load_system(problem: str):
 
 
 def open_problem(args):
-    """The problem of ``args.problem`` as a :class:`rigidkin.derivation_cache.Derivation`: read from the
+    """The problem of ``args.problem`` as a :class:`rigidkin.io.derivation_cache.Derivation`: read from the
     derivation cache when it was derived before (unless ``--no-cache``), else loaded from its file."""
-    from ..derivation_cache import Derivation
+    from ..io.derivation_cache import Derivation
 
     return Derivation(args.problem, lambda: load_system(args.problem), use=not getattr(args, "no_cache", False))
 
@@ -96,7 +96,7 @@ class TimeLimit(RigidkinError):
 
 def time_limit(seconds: float | None, what: str):
     """Stop ``what`` with a clear error after ``seconds`` (main thread, POSIX; otherwise no limit)."""
-    from ..timelimit import time_limit as limit
+    from ..base.timelimit import time_limit as limit
 
     def error():
         return TimeLimit(f"{what} took longer than {seconds:g} s and was stopped.",
@@ -109,7 +109,7 @@ def json_safe(text: str) -> str:
     """JSON text for a terminal: control characters inside its strings written as ``\\uXXXX`` escapes."""
     import json
 
-    from ..textsafe import terminal_safe
+    from ..base.textsafe import terminal_safe
 
     if terminal_safe(text) == text:
         return text
@@ -142,7 +142,7 @@ def value(text: str, where: str) -> float:
     """
     import math
 
-    from ..units import parse_quantity
+    from ..base.units import parse_quantity
 
     v = parse_quantity(text, None, where)
     if not math.isfinite(v):

@@ -2,7 +2,7 @@
 
 Three layers, each catching what the one before cannot:
 
-1. A SIGALRM timer (:func:`rigidkin.timelimit.time_limit`, so that the shorter limits of single steps
+1. A SIGALRM timer (:func:`rigidkin.base.timelimit.time_limit`, so that the shorter limits of single steps
    nest inside it) raises :class:`TimeLimitReached` in the main thread.  It is a BaseException, so
    no ``except Exception`` in a library (sympy, a fallback) can swallow it; the command line prints
    one paragraph and exits with status 4.
@@ -55,7 +55,7 @@ def deadline(seconds: float | None, hard_stop: bool = False):
     if not seconds or seconds <= 0:
         yield
         return
-    from ..timelimit import time_limit
+    from ..base.timelimit import time_limit
     from .options import EXIT_TIME
 
     set_step("")

@@ -29,7 +29,7 @@ def run(args) -> int:
     from .common import guarded, json_safe, progress
 
     if args.output:
-        from ..outfile import check_target
+        from ..base.outfile import check_target
 
         check_target(args.output, "the graded worksheet")
     with progress(f"Reading {args.worksheet}"):
@@ -43,7 +43,7 @@ def run(args) -> int:
     else:
         out = as_text(report)
     if args.output:
-        from ..outfile import writing
+        from ..base.outfile import writing
 
         with writing(args.output, "the graded worksheet") as fh:
             fh.write(out if out.endswith("\n") else out + "\n")

@@ -13,7 +13,7 @@ def run(args) -> int:
     import tomllib
 
     from .. import examples
-    from ..textsafe import terminal_safe
+    from ..base.textsafe import terminal_safe
 
     for name in examples.names():
         form = "toml" if (examples.HERE / f"{name}.toml").exists() else "py"

@@ -38,7 +38,7 @@ class Parser(argparse.ArgumentParser):
     """An ArgumentParser whose refusals are one paragraph on stderr, control characters escaped, status 2."""
 
     def error(self, message: str):
-        from ..textsafe import terminal_safe
+        from ..base.textsafe import terminal_safe
 
         text = terminal_safe(message.removeprefix("argument ").rstrip("."), newlines=False)
         sys.stderr.write(f"rigidkin: {text}. See '{terminal_safe(self.prog, newlines=False)} --help'.\n")
@@ -136,7 +136,7 @@ def add_no_cache(p) -> None:
 
 def parse_modes(items) -> dict:
     """``--mode CONTACT=STATE ...`` → {contact: state} (states: open, slip, stick)."""
-    from ..errors import InputError
+    from ..base.errors import InputError
 
     out = {}
     for it in items:

@@ -7,8 +7,8 @@ inline figures, an inline animation player); Markdown and LaTeX put their figure
 
 from __future__ import annotations
 
-from ..errors import InputError
-from ..textsafe import terminal_safe
+from ..base.errors import InputError
+from ..base.textsafe import terminal_safe
 
 
 def register(sub) -> None:
@@ -58,8 +58,8 @@ def _numbers(pairs: dict, what: str) -> dict:
 
 
 def run(args) -> int:
-    from ..errors import RigidkinError
-    from ..outfile import OutputError, check_target, writing
+    from ..base.errors import RigidkinError
+    from ..base.outfile import OutputError, check_target, writing
     from ..report.document import Animation, build_document
     from ..report.output import format_of, write_document
     from .common import guarded, open_problem, progress, with_file

@@ -14,7 +14,7 @@ import sys
 import time
 import warnings
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 
 def register(sub) -> None:
@@ -123,7 +123,7 @@ def _simulate(system, span, **kw):
 
 def check_points(system, points: int) -> None:
     """Refuse ``--points`` whose histories would not fit in memory (estimated before anything is sampled)."""
-    from ..limits import check_memory, history_bytes
+    from ..base.limits import check_memory, history_bytes
 
     n, n_c = len(system.coordinate_info), len(system.constraints)
     columns = 2 * n + 1 + 8 * n_c + 6          # t, state, work; reactions (6 at a 3D joint), friction limits; T, U, E
@@ -134,10 +134,10 @@ def check_points(system, points: int) -> None:
 
 def run(args) -> int:
     """Exit status 0, or 3 (EXIT_STOPPED) when the simulation stops before its end time."""
+    from ..base.outfile import check_target
+    from ..base.textsafe import terminal_safe
     from ..numeric.figure import figure_formats
     from ..numeric.rhs import SimulationError
-    from ..outfile import check_target
-    from ..textsafe import terminal_safe
     from .common import guarded, json_safe, open_problem
     from .deadline import set_step
     from .options import EXIT_STOPPED

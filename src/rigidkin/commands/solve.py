@@ -14,7 +14,7 @@ def register(sub) -> None:
     p = sub.add_parser("solve", help="derive the equations of motion, reactions and answers")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
     try:
-        from ..laws import METHODS
+        from ..derive.laws import METHODS
     except ImportError:            # pragma: no cover - the laws package is part of rigidkin
         METHODS = ("newton-euler",)
     p.add_argument("--method", default="newton-euler",
@@ -33,9 +33,9 @@ def register(sub) -> None:
 def answer_questions(system, spec, args, derived=None) -> tuple[dict, list[str]]:
     """Answer the file's questions in order; a question that cannot be answered gets its reason.
 
-    With ``derived`` (a :class:`rigidkin.derivation_cache.Derivation`) the answers are read from it when
+    With ``derived`` (a :class:`rigidkin.io.derivation_cache.Derivation`) the answers are read from it when
     cached, and kept in it when every question was answered."""
-    from ..errors import RigidkinError
+    from ..base.errors import RigidkinError
     from .common import guarded, progress
 
     questions = spec.questions if spec is not None else ()
@@ -78,7 +78,7 @@ _REL = {">": ">", "<": "<", ">=": r"\geq", "<=": r"\leq"}
 def latex_text(sol, spec, answers) -> str:
     import sympy as sp
 
-    from ..printing import euler_norms, latex
+    from ..base.printing import euler_norms, latex
     from ..report.text import reaction_labels
 
     s = sol.system
@@ -121,7 +121,7 @@ def run(args) -> int:
     """Exit status 0, or 1 (EXIT_UNANSWERED) when a question of the file could not be answered.
 
     A solve printed before for the same file and options is printed again from the cache at once."""
-    from ..derivation_cache import read_output, write_output
+    from ..io.derivation_cache import read_output, write_output
 
     use = not args.no_cache
     options = ("solve", args.method, args.format, bool(args.no_answers), tuple(args.mode))
@@ -143,10 +143,10 @@ def run(args) -> int:
 
 
 def _solve(args) -> tuple[str, int]:
-    from ..errors import RigidkinError
+    from ..base.errors import RigidkinError
+    from ..base.textsafe import terminal_safe
     from ..io.results import solution_data
     from ..report.text import problem_text
-    from ..textsafe import terminal_safe
     from .common import guarded, json_safe, open_problem, progress, with_file
 
     with progress(f"Reading {args.problem}"):

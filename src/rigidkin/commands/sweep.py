@@ -14,7 +14,7 @@ from __future__ import annotations
 import sys
 import time
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 
 def register(sub) -> None:
@@ -65,8 +65,8 @@ def _pairs(items, what) -> dict:
 def _value(text: str, where: str) -> float:
     """A value of an axis: a plain number read as it is (no unit registry to load), else through
     rigidkin's quantity parser (units, and every refusal: not finite, too large, not a quantity)."""
-    from ..numeric.sweep_record import plain_number
-    from ..units import MAX_MAGNITUDE
+    from ..base.units import MAX_MAGNITUDE
+    from ..numeric.sweeps.sweep_record import plain_number
     from .common import value as quantity
 
     v = plain_number(text)
@@ -96,9 +96,9 @@ def parse_axis(text: str, where: str):
 
 
 def run(args) -> int:
-    from ..numeric.tables import require_parquet, table_format
-    from ..outfile import check_target
-    from ..textsafe import terminal_safe
+    from ..base.outfile import check_target
+    from ..base.textsafe import terminal_safe
+    from ..numeric.sweeps.tables import require_parquet, table_format
     from .common import guarded, open_problem
     from .deadline import set_step
 
@@ -115,7 +115,7 @@ def run(args) -> int:
     start = time.perf_counter()
     res = _from_record(args, vary, sets, initial, mode) if scheduler is None and args.backend != "numpy" else None
     if res is None:
-        from ..numeric.sweep import check_size, sweep
+        from ..numeric.sweeps.sweep import check_size, sweep
 
         derived = guarded(args, open_problem, args)
         system = derived.system
@@ -155,7 +155,7 @@ def run(args) -> int:
 
 
 def _record_options(args, mode) -> tuple:
-    from ..numeric.sweep_record import options_key
+    from ..numeric.sweeps.sweep_record import options_key
 
     return options_key(mode, args.stop_at, args.record, args.backend)
 
@@ -163,8 +163,8 @@ def _record_options(args, mode) -> tuple:
 def _from_record(args, vary, sets, initial, mode):
     """The sweep from its numeric record when a previous sweep of this problem kept one (no sympy imported,
     nothing derived); None: take the full route."""
-    from ..derivation_cache import read_kept
-    from ..numeric.sweep_record import SUFFIX, run
+    from ..io.derivation_cache import read_kept
+    from ..numeric.sweeps.sweep_record import SUFFIX, run
 
     rec = read_kept(args.problem, _record_options(args, mode), SUFFIX, use=not args.no_cache)
     if rec is None:
@@ -173,8 +173,8 @@ def _from_record(args, vary, sets, initial, mode):
 
 
 def _keep_record(args, mode, record: dict) -> None:
-    from ..derivation_cache import write_kept
-    from ..numeric.sweep_record import SUFFIX
+    from ..io.derivation_cache import write_kept
+    from ..numeric.sweeps.sweep_record import SUFFIX
 
     write_kept(args.problem, _record_options(args, mode), SUFFIX, record, use=not args.no_cache)
 
@@ -183,7 +183,7 @@ def _status_counts(status) -> dict[str, int]:
     """How many runs ended in each way, in the order of the status codes."""
     import numpy as np
 
-    from ..numeric.batch import STATUS
+    from ..numeric.compiled.batch import STATUS
 
     codes, counts = np.unique(np.asarray(status, dtype=int), return_counts=True)
     return {STATUS.get(c, f"status {c}"): n for c, n in zip(codes.tolist(), counts.tolist())}

@@ -18,8 +18,8 @@ def run(args) -> int:
 
     with progress(f"Reading {args.problem}"):
         system, spec = guarded(args, load_system, args.problem)
-    from ..errors import RigidkinError
-    from ..mode import setup_mode
+    from ..base.errors import RigidkinError
+    from ..derive.mode import setup_mode
 
     try:
         with progress("Checking the kinematics and constraints"):
@@ -30,7 +30,7 @@ def run(args) -> int:
     source = str(spec.path) if spec is not None else f"bundled example {args.problem}"
     indep = ", ".join(q.func.__name__ for q in red.independent) or "none"
     dep = ", ".join(q.func.__name__ for q in red.dependent)
-    from ..textsafe import terminal_safe
+    from ..base.textsafe import terminal_safe
 
     print(terminal_safe(f"{source}: valid. {system.title}: {len(system.bodies)} bodies, {len(system.coordinate_info)} "
           f"coordinates (independent: {indep}{'; dependent: ' + dep if dep else ''}), "

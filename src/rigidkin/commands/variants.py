@@ -31,22 +31,22 @@ def register(sub) -> None:
 def run(args) -> int:
     import math
 
-    from ..errors import InputError
+    from ..base.errors import InputError
+    from ..base.textsafe import terminal_safe
     from ..grading.variants import as_data, as_moodle, as_text, make_set, parse_vary
-    from ..textsafe import terminal_safe
     from .common import guarded, json_safe, progress
 
     if not (math.isfinite(args.tolerance) and 0 < args.tolerance < 1):
         raise InputError("--tolerance is a relative tolerance between 0 and 1.", where="--tolerance")
     if args.output:
-        from ..outfile import check_target
+        from ..base.outfile import check_target
 
         check_target(args.output, "the Moodle XML", (".xml",))
     vary = parse_vary(args.vary)
     with progress(f"Solving {args.count} variants of {args.problem}"):
         ps = guarded(args, make_set, args.problem, args.count, args.seed, vary, args.tolerance)
     if args.output:
-        from ..outfile import writing
+        from ..base.outfile import writing
 
         with writing(args.output, "the Moodle XML", suffixes=(".xml",)) as fh:
             fh.write(as_moodle(ps))

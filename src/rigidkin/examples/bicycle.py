@@ -18,7 +18,7 @@ to roll and steer (holonomic, no closed form); the four no-slip rows cannot be i
 wheel's rotation — with x, y, ψ, θB and θF dependent.  The paper linearises its motion about upright
 straight running at speed v = −rR θ̇R: M q̈ + v C1 q̇ + (g K0 + v² K2) q = f for q = (φ, δ);
 ``lean_steer_matrices`` computes M, C1, K0 and K2 from this model (see
-:mod:`rigidkin.numeric.projected`).
+:mod:`rigidkin.numeric.large.projected`).
 """
 
 import sympy as sp
@@ -62,7 +62,7 @@ class WhippleBicycle(rk.System):
         raise rk.ModelError("System.solve eliminates the dependent rates and every reaction in closed form, which "
                             "does not finish in useful time for the Whipple bicycle (five dependent rates through "
                             "the front wheel's contact geometry).", where="bicycle",
-                            hint="Use rigidkin.examples.bicycle.projected() (rigidkin.numeric.projected): its "
+                            hint="Use rigidkin.examples.bicycle.projected() (rigidkin.numeric.large.projected): its "
                                  "linearise(), accelerations() and rhs() give the motion numerically.")
 
 
@@ -126,13 +126,13 @@ def build() -> rk.System:
 
 #: ``setup_mode`` / ``System.solve`` eliminate the dependent rates in closed form; for this model that
 #: elimination does not finish in useful time, so tools that need it skip the bicycle and
-#: :mod:`rigidkin.numeric.projected` derives its motion instead.
+#: :mod:`rigidkin.numeric.large.projected` derives its motion instead.
 SYMBOLIC_SETUP = False
 
 
 def projected(system: rk.System | None = None):
     """The bicycle's equations of motion projected on roll, steer and rear-wheel rates (numeric)."""
-    from rigidkin.numeric.projected import ProjectedModel
+    from rigidkin.numeric.large.projected import ProjectedModel
 
     s = system or build()
     phi, delta, thR = s.coordinates[:3]

@@ -14,8 +14,8 @@ from pathlib import Path
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols, outer
 
-from ..errors import RigidkinError
-from ..laws.newton_euler import body_balances
+from ..base.errors import RigidkinError
+from ..derive.laws.newton_euler import body_balances
 from ..model.speeds import quaternion_groups
 from .space import Sampler, plain_accel, to_plain
 
@@ -249,7 +249,7 @@ class Reference:
         return out
 
     def energy_equation(self):
-        from ..laws import energy
+        from ..derive.laws import energy
 
         eqs = energy.equations(self.setup)
         return [e.expr for e in eqs]

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from .. import algebra
-from ..printing import text
+from ..base import algebra
+from ..base.printing import text
 
 t = dynamicsymbols._t
 MAX_PAIRS = 600
@@ -139,7 +139,7 @@ def _pair(U, R, scale) -> TermDiff:
 
 def dimension_problem(ref, lhs, rhs) -> str | None:
     """The first dimensionally inconsistent term of ``lhs = rhs``, in words (None: consistent)."""
-    from ..analysis.dimensions import check_equation, symbol_dimensions
+    from ..base.dimensions import check_equation, symbol_dimensions
 
     try:
         rep = check_equation(lhs, rhs, symbol_dimensions(ref.system, ref.setup), "claim")

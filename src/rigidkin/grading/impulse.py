@@ -13,8 +13,8 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..errors import InputError
-from ..printing import text
+from ..base.errors import InputError
+from ..base.printing import text
 from . import space
 from .engine import Reference
 from .feedback import dimension_problem

@@ -23,8 +23,8 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
-from ..errors import InputError
-from ..printing import text
+from ..base.errors import InputError
+from ..base.printing import text
 from . import space
 from .engine import Reference
 from .mistakes import kinematic_variants
@@ -146,8 +146,8 @@ def _items(st: Step) -> list[str]:
 
 
 def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
+    from ..derive.laws.newton_euler import body_loads
     from ..io.expressions import parse_vector
-    from ..laws.newton_euler import body_loads
 
     bodies = ref.system.bodies
     if st.body is None and len(bodies) > 1:

@@ -3,12 +3,12 @@
 The HTML page is written for the student: each step's claim beside the engine's form, the verdict, the
 causes, and the differing terms highlighted (theirs struck through in red, the engine's in green).
 Everything that came from the worksheet or the problem file is escaped
-(:func:`rigidkin.textsafe.html_text`); the page loads nothing and runs no script.
+(:func:`rigidkin.base.textsafe.html_text`); the page loads nothing and runs no script.
 """
 
 from __future__ import annotations
 
-from ..textsafe import html_text, terminal_safe
+from ..base.textsafe import html_text, terminal_safe
 from .steps import CORRECT, GradeReport
 
 _MARK = {"correct": "✓", "incorrect": "✗", "unreadable": "?"}

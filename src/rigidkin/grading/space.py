@@ -16,7 +16,7 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from .. import algebra
+from ..base import algebra
 
 t = dynamicsymbols._t
 

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..errors import InputError, RigidkinError
-from ..printing import text
+from ..base.errors import InputError, RigidkinError
+from ..base.printing import text
 from . import space
 from .engine import Reference, reference
 from .feedback import dimension_problem, term_diff

@@ -21,10 +21,10 @@ from pathlib import Path
 
 import sympy as sp
 
-from ..errors import InputError, RigidkinError
-from ..printing import text
-from ..textsafe import html_text, is_identifier
-from ..units import LENGTH, TIME, to_si
+from ..base.errors import InputError, RigidkinError
+from ..base.printing import text
+from ..base.textsafe import html_text, is_identifier
+from ..base.units import LENGTH, TIME, to_si
 
 MAX_COUNT = 200
 DEFAULT_RTOL = 0.01

@@ -29,11 +29,11 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..errors import InputError
+from ..base.errors import InputError
+from ..base.textsafe import is_identifier
 from ..io.expressions import MAX_LENGTH
 from ..io.locate import Locator
 from ..io.reading import _parse_toml
-from ..textsafe import is_identifier
 
 MAX_BYTES = 200_000        # a worksheet is a page of steps
 MAX_STEPS = 200

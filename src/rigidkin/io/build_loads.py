@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..model.loads import V as DAMPER_SPEED
 from . import schema as S
 from .expressions import (

@@ -6,10 +6,10 @@ from __future__ import annotations
 import sympy as sp
 
 from ..analysis.questions import Question
-from ..errors import InputError
+from ..base.errors import InputError
+from ..base.units import ONE, TIME
 from ..model.checks import NONNEGATIVE, REAL, require
 from ..model.constraints import Contact
-from ..units import ONE, TIME
 from . import schema as S
 from .expressions import (
     Scope,

@@ -21,7 +21,7 @@ The language:
 
 Everything else — attribute access other than ``FRAME.axis``, subscripts, lambdas, comprehensions,
 strings, comparisons in an expression, calls of other names, dunder names, undeclared names — is
-refused with an :class:`~rigidkin.errors.InputError` that says which construct and at which column.
+refused with an :class:`~rigidkin.base.errors.InputError` that says which construct and at which column.
 The size of the input is bounded (length, nesting depth, number of nodes), so parsing never hangs.
 """
 
@@ -34,7 +34,7 @@ from collections.abc import Callable
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..model.checks import numeric_value
 from .scope import Scope, default_scope  # noqa: F401  (public here too: the language's scope)
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 MAX_BYTES = 1_000_000      # the whole file
 MAX_LINE = 10_000          # characters in one line

@@ -3,7 +3,7 @@
 ``load_problem(path)`` returns ``(system, spec)``; ``spec`` (a :class:`ProblemSpec`) keeps what the
 file asks (``[ask]``: the equations of motion, reactions, and questions as
 :class:`rigidkin.analysis.questions.Question` objects) and can say where any field is written.
-Every problem is reported as an :class:`~rigidkin.errors.InputError` (or the model's own
+Every problem is reported as an :class:`~rigidkin.base.errors.InputError` (or the model's own
 ``ModelError``) naming the file, the line, the field path and what to do.
 """
 
@@ -16,11 +16,11 @@ from pathlib import Path
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..errors import InputError, ModelError, RigidkinError
+from ..base.errors import InputError, ModelError, RigidkinError
+from ..base.units import LENGTH, ONE, TIME, to_si, unit_dimension
 from ..model.checks import REAL, check_problem_name, generated_clash, problem_name, require
 from ..model.shapes import SHAPES
 from ..model.system import System
-from ..units import LENGTH, ONE, TIME, to_si, unit_dimension
 from . import schema as S
 from .build_loads import ConstraintsAndLoads
 from .build_questions import Questions, _slip_handler

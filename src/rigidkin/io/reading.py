@@ -1,6 +1,6 @@
 """Reading a problem file's text: size and structure bounded, TOML parsed, the schema checked.
 
-Every failure is an :class:`~rigidkin.errors.InputError` naming the file, the line and the field path.
+Every failure is an :class:`~rigidkin.base.errors.InputError` naming the file, the line and the field path.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from pathlib import Path
 
 from pydantic import BaseModel, ValidationError
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..model.shapes import SHAPES
 from . import schema as S
 from .locate import Locator

@@ -36,7 +36,7 @@ def regime_data(regime) -> dict:
     computed (M q̈ = f gives them; their closed form is too large to be data anyone reads), and the
     reactions are written in terms of q̈.
     """
-    from ..solution import READABLE_DOF, LazyMap
+    from ..derive.solution import READABLE_DOF, LazyMap
 
     acc = regime.accelerations
     large = regime.mass_matrix.rows > READABLE_DOF and isinstance(acc, LazyMap) and not acc.computed

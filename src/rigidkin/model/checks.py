@@ -26,7 +26,7 @@ import re
 
 import sympy as sp
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 
 MAX_NAME = 64
 _IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]*")

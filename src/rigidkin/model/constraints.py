@@ -16,7 +16,7 @@ from typing import ClassVar
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 from .loads import Application, SlidingFriction
 from .points import Point
 

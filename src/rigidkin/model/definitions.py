@@ -27,8 +27,8 @@ from sympy.core.function import AppliedUndef
 from sympy.core.symbol import Str
 from sympy.physics.vector import dynamicsymbols
 
-from ..errors import ModelError
-from ..units import Dimension
+from ..base.errors import ModelError
+from ..base.units import Dimension
 
 t = dynamicsymbols._t
 
@@ -157,8 +157,8 @@ def define(system, name: str, expression, unit: str | None = None, description: 
            where: str | None = None) -> Definition:
     """Check ``expression`` (constant, dimensionally consistent, real at the parameters' values) and
     return the Definition of ``name``; its ``quantity`` is positive when its value is."""
-    from ..analysis.dimensions import DimensionMismatch, dimension_of, symbol_dimensions
-    from ..units import unit_dimension
+    from ..base.dimensions import DimensionMismatch, dimension_of, symbol_dimensions
+    from ..base.units import unit_dimension
 
     where = where or f"definition {name}"
     expr = sp.sympify(expression)

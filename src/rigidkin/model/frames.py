@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.physics.vector import ReferenceFrame, Vector
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 

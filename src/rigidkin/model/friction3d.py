@@ -97,7 +97,7 @@ class SlidingFriction3D(SlidingFriction):
 
     def trace_kinematics(self, setup) -> None:
         """The slip velocity and its direction, as the method states them (Kinematics)."""
-        from ..trace import LazyEquations
+        from ..base.trace import LazyEquations
 
         s1, s2 = sp.symbols(f"s_{self.name}1 s_{self.name}2", real=True)
         u1, u2 = self.direction()

@@ -15,8 +15,8 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 from sympy.physics.vector import Vector
 
-from .. import algebra
-from ..errors import ModelError
+from ..base import algebra
+from ..base.errors import ModelError
 from .points import Point
 
 

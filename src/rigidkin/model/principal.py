@@ -19,8 +19,8 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import Dyadic, Vector
 
-from .. import algebra
-from ..errors import ModelError
+from ..base import algebra
+from ..base.errors import ModelError
 from .frames import Frame
 from .shapes import parallel_axis
 

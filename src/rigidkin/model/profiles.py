@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,7 +40,7 @@ class Arc:
         return kin.simplify_expr((-n).dot(self.toward) - sp.cos(self.half_angle))
 
     def describe(self) -> str:
-        from ..printing import text, text_vector
+        from ..base.printing import text, text_vector
 
         return f"within {text(self.half_angle)} of {text_vector(self.toward)}"
 

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..units import ONE, Dimension
+from ..base.units import ONE, Dimension
 
 t = dynamicsymbols._t
 

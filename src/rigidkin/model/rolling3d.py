@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from .. import algebra
-from ..errors import ModelError
+from ..base import algebra
+from ..base.errors import ModelError
 from .constraints import Contact
 from .surfaces import Line
 

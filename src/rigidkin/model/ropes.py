@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 from .constraints import Constraint, Row
 from .loads import Application, moves_in
 from .points import Point

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 
 t = dynamicsymbols._t
 
@@ -226,7 +226,7 @@ def require_rate_speeds(system, what: str) -> None:
     named = ", ".join(u.func.__name__ for u in ke.speeds if not isinstance(u, sp.Derivative))
     raise ModelError(f"{what} is written for the coordinates and their rates (u = q̇), but this system's speeds "
                      f"include {named}, which are not coordinate rates (q̇ = W(q) u).", where=system.name,
-                     hint="Linearise numerically with rigidkin.numeric.projected.ProjectedModel(system): its "
+                     hint="Linearise numerically with rigidkin.numeric.large.projected.ProjectedModel(system): its "
                           "state_matrix() and linearise() handle any speeds; or declare the frame without "
                           "speeds= (and without a quaternion) to keep u = q̇.")
 

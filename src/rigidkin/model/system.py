@@ -12,8 +12,8 @@ from __future__ import annotations
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
-from ..errors import ModelError
-from ..units import NAMED, ONE, Dimension, to_si, unit_dimension
+from ..base.errors import ModelError
+from ..base.units import NAMED, ONE, Dimension, to_si, unit_dimension
 from . import constraints as C
 from . import loads as L
 from .bodies import Body
@@ -481,7 +481,7 @@ class System(ConstraintMethods, LoadMethods):
         ``integrate=False`` keeps the coordinates whose relation comes from integrating a rate relation
         (a constant of integration) as coordinates of their own, as a simulation entering the mode needs.
         """
-        from ..laws import solve_with
+        from ..derive.laws import solve_with
 
         for sym, value in (substitutions or {}).items():
             if isinstance(value, (int, float, sp.Basic)) and not isinstance(value, bool):

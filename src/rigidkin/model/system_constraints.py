@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from sympy.physics.vector import Vector, dynamicsymbols
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 from . import constraints as C
 from .checks import NONNEGATIVE, POSITIVE
 from .frames import Frame

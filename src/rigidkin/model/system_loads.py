@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from sympy.physics.vector import Vector, dynamicsymbols
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 from . import loads as L
 from .checks import NONNEGATIVE
 from .points import Point

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from ..errors import ModelError
+from ..base.errors import ModelError
 from . import constraints as C
 
 

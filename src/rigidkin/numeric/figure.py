@@ -37,7 +37,7 @@ def plot_result(result, path=None, title: str | None = None):
     import matplotlib.pyplot as plt
     from matplotlib.figure import Figure
 
-    from ..textsafe import terminal_safe
+    from ..base.textsafe import terminal_safe
 
     fig = Figure(figsize=(10, 11), layout="constrained")
     axes = fig.subplots(4, 1, sharex=True)
@@ -141,7 +141,7 @@ def save_figure(fig, path, what: str = "the figure", **savefig_kw) -> Path:
     Text that matplotlib's mathtext cannot typeset (a title with unmatched ``$`` or ``\\frac{``) is
     drawn as plain text instead.  A path that cannot be written is an OutputError naming the reason.
     """
-    from ..outfile import OutputError, check_target, writing
+    from ..base.outfile import OutputError, check_target, writing
 
     formats = figure_formats()
     p = check_target(path, what, formats)

@@ -181,14 +181,14 @@ class SimulationResult:
             buf.write(chunk)
         text = buf.getvalue()
         if path is not None:
-            from ..outfile import write_text
+            from ..base.outfile import write_text
 
             write_text(path, text, "the histories")
         return text
 
     def write_csv(self, path) -> Path:
         """Write the histories as CSV to ``path``, chunk by chunk, whole or not at all (an OutputError says why)."""
-        from ..outfile import writing
+        from ..base.outfile import writing
 
         with writing(path, "the histories") as f:
             for chunk in self._csv_chunks():
@@ -196,7 +196,7 @@ class SimulationResult:
         return Path(path)
 
     def _csv_chunks(self, rows: int = 20_000):
-        from ..textsafe import safe_csv_cell
+        from ..base.textsafe import safe_csv_cell
 
         cols = self.columns()
         names = list(cols)

@@ -17,8 +17,8 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..errors import RigidkinError
-from .codesafe import safe_lambdify
+from ..base.errors import RigidkinError
+from .compiled.codesafe import safe_lambdify
 from .state import StateLayout
 
 t = dynamicsymbols._t
@@ -76,7 +76,7 @@ class RegimeFunctions:
     """
 
     def __init__(self, solution, regime_index: int, layout: StateLayout, quantities: Sequence[sp.Expr] = ()):
-        from ..kinematics import linear_form
+        from ..derive.kinematics import linear_form
 
         reg = solution.regime(regime_index)
         red = solution.setup.reduction

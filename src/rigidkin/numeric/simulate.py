@@ -23,14 +23,14 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..model.constraints import Coulomb
-from .contact_modes import confirm, decide
-from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
+from .contacts.contact_modes import confirm, decide
+from .contacts.modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
+from .contacts.transition import transition as _transition
 from .result import Event, Segment, SimulationResult, build_result
 from .rhs import RHS, SimulationError, compile_functions
 from .state import StateLayout, initial_values, parameter_vector
-from .transition import transition as _transition
 
 t = dynamicsymbols._t
 
@@ -225,8 +225,8 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     max_step = (t1 - t0) / 100 if max_step is None else float(max_step)   # no event hides inside one step
     if method not in METHODS:
         raise InputError(f"unknown integration method '{method}'.", where="simulate", hint=f"Use {', '.join(METHODS)}.")
-    from .large import numeric_route, simulate_tree  # past the symbolic limit: a tree of pins goes numeric
-    from .tree import NotATree
+    from .large.route import numeric_route, simulate_tree  # past the symbolic limit: a tree of pins goes numeric
+    from .large.tree import NotATree
 
     tree = numeric_route(system) if not phases and not mode else None
     if tree is not None:

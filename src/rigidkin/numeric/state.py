@@ -17,8 +17,8 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..errors import InputError
-from ..units import to_si
+from ..base.errors import InputError
+from ..base.units import to_si
 
 t = dynamicsymbols._t
 

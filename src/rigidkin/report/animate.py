@@ -19,7 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
 
-from ..textsafe import figure_text  # noqa: E402
+from ..base.textsafe import figure_text  # noqa: E402
 from .drawing import draw_body, draw_surfaces  # noqa: E402
 from .geometry import Geometry, body_size  # noqa: E402
 from .geometry import t as time_symbol  # noqa: E402

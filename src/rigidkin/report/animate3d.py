@@ -24,13 +24,13 @@ import sympy as sp  # noqa: E402
 from matplotlib.animation import FuncAnimation  # noqa: E402
 from sympy.physics.vector import Vector, dynamicsymbols  # noqa: E402
 
-from ..errors import InputError  # noqa: E402
-from ..kinematics import Kinematics  # noqa: E402
+from ..base.errors import InputError  # noqa: E402
+from ..base.textsafe import figure_text  # noqa: E402
+from ..derive.kinematics import Kinematics  # noqa: E402
 from ..model import shapes as S  # noqa: E402
 from ..model.rolling3d import DiskContact  # noqa: E402
 from ..model.surfaces import Line  # noqa: E402
-from ..numeric.codesafe import safe_lambdify  # noqa: E402
-from ..textsafe import figure_text  # noqa: E402
+from ..numeric.compiled.codesafe import safe_lambdify  # noqa: E402
 from .animate import MotionAnimation  # noqa: E402
 
 t = dynamicsymbols._t

@@ -15,9 +15,9 @@ from dataclasses import dataclass, field
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..printing import euler_norms
-from ..printing import text as plain_text
-from ..trace import SECTIONS
+from ..base.printing import euler_norms
+from ..base.printing import text as plain_text
+from ..base.trace import SECTIONS
 
 t = dynamicsymbols._t
 
@@ -211,7 +211,7 @@ def check_blocks(solution) -> list:
 
 
 def check_table(result) -> list:
-    """Blocks from a cross-check report (``rigidkin.laws.crosscheck.CheckReport``): the law × equation
+    """Blocks from a cross-check report (``rigidkin.derive.laws.crosscheck.CheckReport``): the law × equation
     verdicts and how each was decided, the disagreements with both forms, the dimensions of every equation."""
     verdicts = getattr(result, "verdicts", None)
     if verdicts is None:

@@ -14,9 +14,9 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 
-from .. import algebra
-from ..errors import InputError
-from ..numeric.codesafe import safe_lambdify
+from ..base import algebra
+from ..base.errors import InputError
+from ..numeric.compiled.codesafe import safe_lambdify
 
 t = dynamicsymbols._t
 
@@ -45,7 +45,7 @@ class Geometry:
     """
 
     def __init__(self, system, setup=None, values: Mapping | None = None):
-        from ..mode import setup_mode
+        from ..derive.mode import setup_mode
 
         self.system = system
         self.setup = setup or setup_mode(system)

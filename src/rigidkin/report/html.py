@@ -4,7 +4,7 @@ Everything the page shows is inside the one file: formulas are presentation Math
 browser itself, no script), figures are PNG data URIs, the animation is matplotlib's HTML5 player
 with its frames embedded.  A content security policy forbids every fetch, so the page cannot reach
 the network even by accident, and forbids every script unless the page holds the animation player.
-Every piece of text is escaped (:func:`rigidkin.textsafe.html_text`), formulas' text too
+Every piece of text is escaped (:func:`rigidkin.base.textsafe.html_text`), formulas' text too
 (:mod:`rigidkin.report.notation`).
 """
 
@@ -15,7 +15,7 @@ import re
 from functools import cache
 from importlib import resources
 
-from ..textsafe import html_text
+from ..base.textsafe import html_text
 from .document import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
 from .notation import mathml, mathml_condition
 

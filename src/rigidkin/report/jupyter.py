@@ -18,7 +18,7 @@ import re
 
 from sympy.physics.vector import dynamicsymbols
 
-from ..textsafe import html_text
+from ..base.textsafe import html_text
 from .document import Math, Paragraph, Table, answers_blocks, inputs_tables
 from .html import _math as _mathml
 from .html import block_html as _report_block

@@ -2,7 +2,7 @@
 
 Figures are written beside the Markdown file (``figures`` maps a figure key to its relative path)
 or, without a place for them, embedded as data URIs; the animation is linked as a GIF.  Every piece of
-text is escaped (:func:`rigidkin.textsafe.markdown_text`): no raw HTML, link or emphasis of a user's
+text is escaped (:func:`rigidkin.base.textsafe.markdown_text`): no raw HTML, link or emphasis of a user's
 title or description gets through; names inside formulas are escaped by the LaTeX printer.
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import base64
 
-from ..textsafe import markdown_text
+from ..base.textsafe import markdown_text
 from .document import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
 from .notation import latex, latex_condition
 

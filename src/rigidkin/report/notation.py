@@ -21,8 +21,8 @@ from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 from sympy.physics.vector.printing import VectorLatexPrinter
 from sympy.printing.mathml import MathMLPresentationPrinter
 
-from ..printing import GREEK
-from ..textsafe import tex_text
+from ..base.printing import GREEK
+from ..base.textsafe import tex_text
 
 t = dynamicsymbols._t
 

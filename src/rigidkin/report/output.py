@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errors import InputError
-from ..textsafe import safe_filename
+from ..base.errors import InputError
+from ..base.textsafe import safe_filename
 from .document import Animation, Document, Figure, build_document
 
 FORMATS = {".html": "html", ".htm": "html", ".md": "markdown", ".markdown": "markdown", ".tex": "latex"}

@@ -17,8 +17,8 @@ import numpy as np  # noqa: E402
 from matplotlib.figure import Figure as MplFigure  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-from ..printing import greek  # noqa: E402
-from ..textsafe import figure_text  # noqa: E402
+from ..base.printing import greek  # noqa: E402
+from ..base.textsafe import figure_text  # noqa: E402
 from .document import Animation, Figure, Paragraph, Table  # noqa: E402
 
 _UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s")}

@@ -1,15 +1,15 @@
 """The terminal form of a solution, for people: the coordinates and their senses restated, one equation
 per block in unicode math (θ̈, θ̇, µ), each reaction and answer named with what it is.  What a problem
 file wrote (title, senses, descriptions) cannot drive the terminal: control characters and escape
-sequences are shown as visible escapes (:func:`rigidkin.textsafe.terminal_safe`).
+sequences are shown as visible escapes (:func:`rigidkin.base.textsafe.terminal_safe`).
 """
 
 from __future__ import annotations
 
 from sympy.physics.vector import dynamicsymbols
 
-from ..printing import euler_norms, text
-from ..textsafe import terminal_safe
+from ..base.printing import euler_norms, text
+from ..base.textsafe import terminal_safe
 
 t = dynamicsymbols._t
 _INDENT = "    "
@@ -27,7 +27,7 @@ def _along(vector) -> str:
 def _directions(system, c) -> dict:
     """Reaction symbol → its direction vector for contacts and collars (planar problems)."""
     try:
-        from ..kinematics import Kinematics
+        from ..derive.kinematics import Kinematics
 
         kin = system._cache.get("kin") or Kinematics(system)
         system._cache["kin"] = kin
@@ -108,7 +108,7 @@ def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
         for i, e in enumerate(r.eom, start=1):
             out += [f"{_INDENT}({i})  {text(e)} = 0", ""]
         out.append("Accelerations")
-        from ..solution import READABLE_DOF, LazyMap
+        from ..derive.solution import READABLE_DOF, LazyMap
 
         if len(r.eom) > READABLE_DOF and isinstance(r.accelerations, LazyMap) and not r.accelerations.computed:
             out.append(f"{_INDENT}from M q̈ = f (the equations above): with more than {READABLE_DOF} degrees of "

@@ -18,7 +18,7 @@ import base64
 import html
 from collections.abc import Mapping
 
-from ..errors import RigidkinError
+from ..base.errors import RigidkinError
 
 
 class MissingExtra(RigidkinError, ImportError):

@@ -1,0 +1,174 @@
+"""Deciding whether two expressions or equations agree: symbolically where cheap, else numerically.
+
+Symbolically when the difference simplifies to zero (or, for an equation ``= 0``, when the ratio of two
+forms is a nonzero constant); else numerically at ``SAMPLES`` random states and parameter sets, to a
+relative tolerance ``RTOL``.  Used by the cross-check of the laws, ``check --expect`` and grading.
+"""
+
+from __future__ import annotations
+
+import random
+
+import numpy as np
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from ...base import algebra
+from ...base.printing import text
+
+t = dynamicsymbols._t
+
+#: Number of random states and parameter sets of a numerical comparison, and its relative tolerance.
+SAMPLES = 24
+MIN_SAMPLES = 20
+RTOL = 1e-8
+#: Above this operation count, symbolic simplification of a difference is not attempted.
+SYMBOLIC_LIMIT = 250
+
+
+
+def _numeric_points(exprs, n: int, seed: int):
+    """Lambdified functions of the expressions and ``n`` random argument tuples."""
+    plains, backs = [], {}
+    for e in exprs:
+        p, back = algebra.plain_state(sp.sympify(e))
+        plains.append(p)
+        backs.update(back)
+    syms = sorted(set().union(*[p.free_symbols for p in plains]) - {t}, key=str)
+    funcs = [sp.lambdify(syms + [t], p, modules=["numpy"]) for p in plains]
+    rng = random.Random(seed)
+    pts = []
+    for _ in range(n):
+        vals = algebra.random_point(syms, rng)
+        pts.append([complex(vals[s]) for s in syms] + [rng.uniform(0.1, 1.0)])
+    return funcs, pts
+
+
+def numerically_equal(a, b, n: int = SAMPLES, seed: int = 3, rtol: float = RTOL) -> bool:
+    """a = b at ``n`` random states and parameter sets, to relative tolerance ``rtol``.
+
+    Points where either side is not finite are skipped; at least ``MIN_SAMPLES`` must be usable.
+    """
+    return _numeric_compare(a, b, n, seed, rtol)[0]
+
+
+def _numeric_compare(a, b, n: int = SAMPLES, seed: int = 3, rtol: float = RTOL) -> tuple[bool, int]:
+    (fa, fb), pts = _numeric_points([a, b], n, seed)
+    used = 0
+    with np.errstate(all="ignore"):
+        for p in pts:
+            try:
+                va, vb = complex(fa(*p)), complex(fb(*p))
+            except (ZeroDivisionError, OverflowError, ValueError):
+                continue
+            if not (np.isfinite(va) and np.isfinite(vb)):
+                continue
+            used += 1
+            if abs(va - vb) > rtol * max(1.0, abs(va), abs(vb)):
+                return False, -used          # a definite difference, found at the used-th state
+    return used >= MIN_SAMPLES, used
+
+
+def compare(a, b) -> tuple[bool, str]:
+    """(equal, how decided) for two expressions of the state and parameters."""
+    d = sp.sympify(a) - sp.sympify(b)
+    if d == 0:
+        return True, "symbolic: identical"
+    if sp.count_ops(d) <= SYMBOLIC_LIMIT:
+        try:
+            if algebra.readable(d) == 0 or sp.simplify(d) == 0:
+                return True, "symbolic: the difference simplifies to 0"
+        except (RecursionError, NotImplementedError, sp.PolynomialError):
+            pass
+    ok, used = _numeric_compare(a, b)
+    if used < 0:
+        return False, f"numeric: they differ at a random state (state {-used} of those evaluated)"
+    if used < MIN_SAMPLES:
+        return False, f"numeric: only {used} of {SAMPLES} random states could be evaluated (undecided)"
+    return ok, f"numeric: {used} random states and parameter sets, rel. tol. {RTOL:g}"
+
+
+def same_equation(a, b) -> tuple[bool, str]:
+    """Two equations ``= 0`` agree up to a nonzero factor free of the state."""
+    a, b = sp.sympify(a), sp.sympify(b)
+    if b != 0 and sp.count_ops(a) + sp.count_ops(b) <= SYMBOLIC_LIMIT:
+        try:
+            r = sp.simplify(sp.cancel(a / b))
+            if r != 0 and not algebra.functions_of_time(r) and not r.has(t):
+                return True, f"symbolic: equal up to the factor {text(r)}"
+        except (RecursionError, NotImplementedError, sp.PolynomialError):
+            pass
+    return False, "symbolic: not a constant multiple"
+
+
+class Sampler:
+    """Random states and parameter sets, shared by every expression compared; accelerations from M q̈ = f.
+
+    Large systems are compared this way: the accelerations at each random state come from solving the
+    mass-matrix form numerically, never from a symbolic inverse.
+    """
+
+    def __init__(self, n: int = SAMPLES, seed: int = 5):
+        self.n, self.rng = n, random.Random(seed)
+        self.values: list[dict] = [{} for _ in range(n)]
+        self._funcs: dict = {}
+
+    def _value(self, i: int, s):
+        d = self.values[i]
+        if s not in d:
+            d[s] = self.rng.uniform(0.1, 1.0) if s == t else complex(algebra.random_point([s], self.rng)[s])
+        return d[s]
+
+    def evaluate(self, expr, i: int, extra: dict | None = None) -> complex:
+        key = sp.sympify(expr)
+        if key not in self._funcs:
+            plain, _ = algebra.plain_state(key)
+            syms = sorted(plain.free_symbols, key=str)
+            self._funcs[key] = (syms, sp.lambdify(syms, plain, modules=["numpy"]))
+        syms, fn = self._funcs[key]
+        args = [extra[s] if extra and s in extra else self._value(i, s) for s in syms]
+        with np.errstate(all="ignore"):
+            return complex(fn(*args))
+
+    def accelerations(self, regime, coords, i: int) -> dict:
+        """{plain q̈ symbol: value} at point ``i`` from the regime's M q̈ = f, solved numerically."""
+        key = ("Mf", id(regime))
+        if key not in self._funcs:
+            M, f = regime.mass_matrix, regime.forcing
+            plain, _ = algebra.plain_state(M.row_join(f))
+            syms = sorted(plain.free_symbols, key=str)
+            self._funcs[key] = (syms, sp.lambdify(syms, plain, modules=["numpy"]), regime)
+        syms, fn, _ = self._funcs[key]
+        with np.errstate(all="ignore"):
+            Mf = np.array(fn(*[self._value(i, s) for s in syms]), dtype=complex)
+        a = np.linalg.solve(Mf[:, :-1], Mf[:, -1])
+        # the plain symbol of q̈ (of ẇ for a quasi-coordinate, whose rate is a speed w)
+        return {algebra.plain_state(q.diff(t, 2))[0]: complex(v) for q, v in zip(coords, a)}
+
+    def residual(self, expr, regime, coords, i: int, extra: dict | None = None) -> tuple[complex, float]:
+        """(value, scale) of ``expr`` with the regime's accelerations (and ``extra`` plain values) at point i."""
+        vals = dict(self.accelerations(regime, coords, i))
+        vals.update(extra or {})
+        terms = sp.Add.make_args(sp.sympify(expr))
+        parts = [self.evaluate(a, i, vals) for a in terms]
+        return sum(parts), max([1.0] + [abs(p) for p in parts])
+
+
+def holds_numerically(expr, regime, coords, sampler: Sampler | None = None, extra=None) -> tuple[bool, str]:
+    """``expr`` (with q̈) vanishes when the regime's accelerations are substituted, at random states."""
+    sampler = sampler or Sampler()
+    used = 0
+    for i in range(sampler.n):
+        try:
+            v, scale = sampler.residual(expr, regime, coords, i, extra)
+        except np.linalg.LinAlgError:
+            continue
+        if not np.isfinite(v):
+            continue
+        used += 1
+        if abs(v) > RTOL * scale:
+            return False, f"numeric: fails at a random state (residual {abs(v):.3g})"
+    return used >= MIN_SAMPLES, f"numeric: {used} random states and parameter sets, rel. tol. {RTOL:g}"
+
+
+# the laws -----------------------------------------------------------------------------------------

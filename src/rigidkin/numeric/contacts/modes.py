@@ -1,0 +1,512 @@
+"""Hybrid modes: the state of every contact, what ends a mode, and which mode follows.
+
+A mode is the state of every contact (``open``, ``slip``, ``stick``); within a mode a regime is the
+direction of every sliding friction.  ``ModeModel`` holds the numeric functions of one regime: the
+right-hand side, the reactions, and the *watches* — quantities whose zero ends the regime:
+
+* a unilateral normal reaction N reaching zero (the contact opens);
+* the gap of an open contact reaching zero (an impact);
+* the slip speed of a slipping contact reaching zero (it may stick: rolling begins);
+* the friction a sticking contact needs reaching ±µN (it starts to slip, in the direction in
+  which the friction saturates);
+* a regime condition of another sign choice reaching zero (the friction direction reverses).
+
+``Hybrid`` derives each mode once (``system.solve(mode=...)``, cached by the system), and chooses the
+mode and regime that are consistent at a state (``settle``): normal reactions that push, friction
+within µN where it sticks, slip directions whose slip-speed rate has the slip's sign.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from ...base.errors import ModelError, RigidkinError
+from ...base.printing import text as show
+from ...model.constraints import ROLLING, SMOOTH, Contact, Coulomb
+from ..rhs import RegimeFunctions, compile_functions
+from ..state import StateLayout
+
+t = dynamicsymbols._t
+
+OPEN, SLIP, STICK = "open", "slip", "stick"
+
+
+class ModeUnavailable(RigidkinError):
+    """A mode the motion needs cannot be derived from the model (e.g. no coordinate lets a contact open)."""
+
+
+def mode_key(mode: dict) -> tuple:
+    return tuple(sorted(mode.items()))
+
+
+def describe_mode(system, mode: dict) -> str:
+    """``A open, B closed (smooth)``: the contacts' states in words."""
+    words = []
+    for name, st in sorted(mode.items()):
+        c = system.constraints[name]
+        if st == OPEN:
+            words.append(f"{name} open")
+        elif st == STICK:
+            words.append(f"{name} rolling" if c.radius != 0 else f"{name} sticking")
+        elif c.friction == SMOOTH:
+            words.append(f"{name} closed")
+        else:
+            words.append(f"{name} slipping")
+    return ", ".join(words) or "no contacts"
+
+
+def look_ahead(t_: float, y: np.ndarray, f: np.ndarray) -> tuple[float, np.ndarray]:
+    """(h, y + h f): a short explicit step along the rates ``f`` (of the first len(f) state slots) that moves
+    the state by a relative 1e-7, and never more than a microsecond's worth — at rest on a threshold the rates
+    are round-off (1e-15), and a step sized by them alone would be years long (a pushed box as it tips)."""
+    n = len(f)
+    h = min(1e-7 * (1.0 + float(np.max(np.abs(y[:n])))) / max(float(np.max(np.abs(f))), 1e-300),
+            1e-6 * (1.0 + abs(float(t_))))
+    y2 = np.array(y, dtype=float)
+    y2[:n] = y2[:n] + h * f
+    return h, y2
+
+
+@dataclass(frozen=True)
+class Watch:
+    """A quantity of the state whose zero ends a regime, and what that zero means."""
+
+    kind: str            # "opens", "impact", "sticks", "slips", "reverses"
+    name: str            # the contact or load
+    label: str           # e.g. "contact A opens"
+    direction: int       # the sign of the crossing that counts (solve_ivp's convention)
+    slip_sign: int = 0   # "slips": the sign σ of the slip that begins
+    quantity: str = ""   # the watched quantity, as a person reads it
+
+
+class _Only:
+    """A view of a ModeModel restricted to some of its conditions."""
+
+    def __init__(self, model, conditions):
+        self._m, self.conditions = model, conditions
+
+    def __getattr__(self, name):
+        return getattr(self._m, name)
+
+
+@dataclass
+class ModeModel:
+    """Numeric functions of one regime of one mode (parameters passed at call time).
+
+    ``functions`` (a :class:`RegimeFunctions`) evaluates, at a state, the rates, the reactions and
+    the quantities [P_nc, watches…, constraint gaps…, T, U, friction forces and limits…].
+    ``conditions`` are the regime's sign conditions: (watch index, ">" or "<").
+    """
+
+    system: object
+    mode: dict
+    regime_index: int
+    solution: object
+    layout: StateLayout
+    functions: RegimeFunctions
+    watches: list
+    conditions: list
+    residual_names: list
+    friction_names: list
+    conservative: bool
+    steady: frozenset = frozenset()   # watches that cannot change: a mode at rest, no explicit time
+
+    @property
+    def regime(self):
+        return self.solution.regime(self.regime_index)
+
+    @property
+    def description(self) -> str:
+        words = describe_mode(self.system, self.mode)
+        conds = [f"{self.watches[wi].quantity} {rel} 0" for wi, rel in self.conditions]
+        return words + (f" ({', '.join(conds)})" if conds else "")
+
+    def _q(self, t_, y, p):
+        return self.functions.evaluate(t_, y, p)
+
+    def rates(self, t_, y, p) -> np.ndarray:
+        """dy/dt of (q, q̇) and of the work of non-conservative loads and reactions."""
+        dy, _, q = self._q(t_, y, p)
+        return np.concatenate([dy, q[:1]])
+
+    def reactions(self, t_, y, p) -> dict:
+        return dict(self._q(t_, y, p)[1])
+
+    def watch_values(self, t_, y, p) -> np.ndarray:
+        return self._q(t_, y, p)[2][1:1 + len(self.watches)]
+
+    def residuals(self, t_, y, p) -> dict:
+        q = self._q(t_, y, p)[2]
+        nw = len(self.watches)
+        return dict(zip(self.residual_names, map(float, q[1 + nw:1 + nw + len(self.residual_names)])))
+
+    def energy(self, t_, y, p) -> tuple[float, float]:
+        q = self._q(t_, y, p)[2]
+        i = 1 + len(self.watches) + len(self.residual_names)
+        return float(q[i]), float(q[i + 1])
+
+    def condition_holds(self, t_, y, p, zero: float) -> bool | None:
+        """Whether the regime's conditions hold strictly at the state (None: one of them is zero there)."""
+        w = self.watch_values(t_, y, p)
+        for wi, rel in self.conditions:
+            v = float(w[wi])
+            if abs(v) <= zero:
+                return None
+            if (v > 0) != (rel == ">"):
+                return False
+        return True
+
+    def leaves_zero_consistently(self, t_, y, p, zero: float) -> bool:
+        """At a state where some condition is zero: does the motion of this regime make them all hold?
+
+        A short explicit step along this regime's own rates shows the sign each condition takes.
+        """
+        y = np.asarray(y, dtype=float)
+        n = 2 * self.layout.n
+        f = self.rates(t_, y, p)[:n]
+        h, y2 = look_ahead(t_, y, f)
+        w0, w1 = self.watch_values(t_, y, p), self.watch_values(t_ + h, y2, p)
+        for wi, rel in self.conditions:
+            v = float(w0[wi]) if abs(float(w0[wi])) > zero else float(w1[wi])
+            if v == 0.0 or (v > 0) != (rel == ">"):
+                return False
+        return True
+
+    def evaluate(self, times: np.ndarray, ys: np.ndarray, p) -> dict:
+        """The reactions, constraint gaps, T, U and friction forces at many states (arrays), by name."""
+        reactions = {k: np.empty(len(times)) for k in self.functions.reaction_names}
+        nw, ns = len(self.watches), len(self.residual_names)
+        res = np.empty((ns, len(times)))
+        T, U = np.empty(len(times)), np.empty(len(times))
+        fr = np.empty((len(self.friction_names), len(times)))
+        for j, tt in enumerate(times):
+            _, r, q = self._q(float(tt), ys[:, j], p)
+            for k, v in r.items():
+                reactions[k][j] = v
+            res[:, j] = q[1 + nw:1 + nw + ns]
+            T[j], U[j] = q[1 + nw + ns], q[2 + nw + ns]
+            fr[:, j] = q[3 + nw + ns:]
+        return {"reactions": reactions, "residuals": dict(zip(self.residual_names, res)), "T": T, "U": U,
+                "frictions": dict(zip(self.friction_names, fr))}
+
+
+class Hybrid:
+    """The modes of one system: derived once each, with their numeric functions and transitions."""
+
+    def __init__(self, system, layout: StateLayout | None = None):
+        self.system = system
+        self.layout = layout or StateLayout.of(system)
+        self.contacts = {n: c for n, c in system.constraints.items() if isinstance(c, Contact)}
+        self._solutions: dict = {}
+        self._models: dict = {}
+        self._contact_fns: dict = {}
+        self._rate_fns: dict = {}
+        self._relation_fns: dict = {}
+        self._depends: dict = {}
+        self._kin = None
+
+    # derivation ------------------------------------------------------------------------------
+    def solution(self, mode: dict):
+        """The Solution of ``mode`` (every contact named), or ModeUnavailable with the model's reason."""
+        key = mode_key(mode)
+        if key not in self._solutions:
+            try:
+                from .slip3d import expand  # 3D slip: the direction relative to a reference tangent
+
+                self._solutions[key] = expand(self.system.solve(mode=dict(mode), integrate=False))
+            except ModelError as exc:   # ConstraintError included
+                self._solutions[key] = ModeUnavailable(
+                    f"the mode ({describe_mode(self.system, mode)}) cannot be derived from the model: "
+                    f"{exc.message}", where=self.system.name, hint=exc.hint)
+        sol = self._solutions[key]
+        if isinstance(sol, Exception):
+            raise sol
+        return sol
+
+    @property
+    def kin(self):
+        if self._kin is None:
+            from ...derive.kinematics import Kinematics
+
+            self._kin = self.system._cache.get("kin") or Kinematics(self.system)
+            self.system._cache["kin"] = self._kin
+        return self._kin
+
+    def default_mode(self) -> dict:
+        """Every contact closed: rolling contacts stick, the others slip (friction decides later)."""
+        return {n: (STICK if c.friction == ROLLING else SLIP) for n, c in self.contacts.items()}
+
+    def model(self, mode: dict, regime_index: int) -> ModeModel:
+        key = (mode_key(mode), regime_index)
+        if key not in self._models:
+            self._models[key] = self._build(dict(mode), regime_index)
+        return self._models[key]
+
+    def _build(self, mode: dict, k: int) -> ModeModel:
+        sol = self.solution(mode)
+        reg = sol.regime(k)
+        setup = sol.setup
+        kin = setup.kin
+        lay = self.layout
+        signs = dict(reg.signs)
+        present = set().union(*[e.expr.free_symbols for e in sol.equations]) if sol.equations else set()
+        zero_r = {r: sp.Integer(0) for r in setup.reactions if r not in present}
+
+        def R(sym):         # a reaction as a symbol the numeric functions fill in (0 if absent)
+            return zero_r.get(sym, sym)
+
+        # energy and the power of non-conservative loads and reactions
+        from ...derive.laws.energy import kinetic_energy, nonconservative_power, potential_energy
+
+        T, U = kinetic_energy(setup), potential_energy(setup)
+        powers = nonconservative_power(setup)
+        P = sum((pw.power for pw in powers), sp.Integer(0)).xreplace(signs).xreplace(zero_r)
+        conservative = all(pw.power == 0 for pw in powers)
+        # watches
+        watches, wexprs = [], []
+
+        def watch(w, e):
+            e = sp.sympify(e).xreplace(zero_r)
+            plain = lay.to_plain(e)
+            if not (plain.free_symbols - set(lay.parameter_symbols)):
+                return None          # a constant never crosses zero
+            watches.append(w)
+            wexprs.append(e)
+            return len(watches) - 1
+
+        for name, c in self.contacts.items():
+            st = mode[name]
+            if st == OPEN:
+                watch(Watch("impact", name, f"impact at {name}", -1, quantity=f"gap of {name}"),
+                      c.gap(kin))
+                continue
+            if c.unilateral:
+                watch(Watch("opens", name, f"contact {name} opens", -1, quantity=str(c.N)), R(c.N))
+            if getattr(c, "arc", None) is not None:        # a profile that is an arc (model.profiles)
+                watch(Watch("arc", name, f"contact {name} reaches the end of its arc", -1,
+                            quantity=f"arc margin of {name}"), c.arc.margin(c, kin))
+            if st == STICK and isinstance(c.friction, Coulomb):
+                mu, N = c.friction.static, R(c.N)       # sticking holds while |F| ≤ µs N
+                if kin.planar:
+                    F = R(c.F)
+                    # contacts held by this one carry their friction with it: their limits add up
+                    spare = sum((self.contacts[h].friction.static * R(self.contacts[h].N)
+                                 for h in getattr(setup, "held", ())), sp.Integer(0))
+                    watch(Watch("slips", name, f"contact {name} starts to slip", -1, -1, f"µ{c.N} − {c.F}"),
+                          mu * N + spare - F)
+                    watch(Watch("slips", name, f"contact {name} starts to slip", -1, +1, f"µ{c.N} + {c.F}"),
+                          mu * N + spare + F)
+                else:
+                    Fs = [R(r) for r in setup.reactions if str(r).startswith(str(c.F))]
+                    watch(Watch("slips", name, f"contact {name} starts to slip", -1, quantity="friction cone"),
+                          mu**2 * N**2 - sum((f**2 for f in Fs), sp.Integer(0)))
+        for c in self.system.constraints.values():      # ropes and cables can only pull (model.ropes)
+            if c.kind in ("rope", "cable") and mode.get(c.name) != OPEN:
+                for tension in c.reactions():
+                    watch(Watch("slack", c.name, f"{c.kind} {c.name} goes slack ({tension} = 0)", -1,
+                                quantity=str(tension)), R(tension))
+        conditions = []
+        for sc in setup.sign_choices:
+            if sc.symbol not in signs:
+                continue
+            sgn = int(signs[sc.symbol])
+            q = (setup.scalar(sc.quantity) if sc.rate_based else R(sc.quantity)).xreplace(signs)
+            kind = "sticks" if (sc.load in self.contacts and sc.rate_based
+                                and isinstance(self.contacts[sc.load].friction, Coulomb)) else "reverses"
+            label = f"contact {sc.load} stops slipping" if kind == "sticks" else f"{sc.label} changes sign"
+            wi = watch(Watch(kind, sc.load, label, -1 if sgn > 0 else +1, quantity=show(kin.simplify_expr(q))), q)
+            if wi is not None:
+                conditions.append((wi, ">" if sgn > 0 else "<"))
+        # constraint residuals: the gaps of the closed rows (position level)
+        residual_names, rexprs = [], []
+        for row in setup.rows:
+            if row.gap is not None and row.gap != 0:
+                residual_names.append(row.label.replace(": normal velocity", "").replace(": velocity along",
+                                                                                           " along"))
+                rexprs.append(row.gap)
+        # friction forces along the contact tangent (stick: the reaction; slip: −µ N σ), and the limits µN
+        friction_names, fexprs = [], []
+        for name, c in self.contacts.items():
+            if mode[name] == SLIP and isinstance(c.friction, Coulomb):
+                sc = next((s_ for s_ in setup.sign_choices if s_.load == name and s_.rate_based), None)
+                if sc is not None and sc.symbol in signs:
+                    friction_names.append(str(c.F))
+                    fexprs.append(-c.friction.mu * R(c.N) * signs[sc.symbol])
+        for name, c in self.contacts.items():
+            if isinstance(c.friction, Coulomb):
+                friction_names.append(f"mu*{c.N}")
+                mu = c.friction.static if mode[name] == STICK else c.friction.kinetic
+                fexprs.append(mu * R(c.N) if mode[name] != OPEN else sp.Integer(0))
+        fns = RegimeFunctions(sol, k, lay, [P, *wexprs, *rexprs, T, U, *fexprs])
+        return ModeModel(self.system, mode, k, sol, lay, fns, watches, conditions, residual_names,
+                         friction_names, conservative, self._steady(sol, reg, wexprs))
+
+    def _steady(self, sol, reg, wexprs) -> frozenset:
+        """In a mode at rest (no degree of freedom) the state does not change, so a watch that does not
+        depend on time explicitly (through a load such as a force growing with t) keeps its value: it is
+        no event, even where it sits exactly at its limit (tan β = µs: the block stays)."""
+        if sol.coordinates or any(self.layout.to_plain(v) != 0 for v in sol.rate_relations.values()):
+            return frozenset()           # it moves (a block carried by a belt has no degree of freedom either)
+        react = {sp.Symbol(k, real=True): v for k, v in reg.reactions.items()}
+        out = set()
+        for i, e in enumerate(wexprs):
+            full = self.layout.to_plain(sp.sympify(e).xreplace(react))
+            if not full.has(t):
+                out.add(i)
+        return frozenset(out)
+
+    # contact quantities in the full state ----------------------------------------------------------
+    def contact_functions(self, name: str):
+        """(gap(q), normal speed(q, q̇), slip speed(q, q̇) or None) of a contact, in every coordinate."""
+        if name not in self._contact_fns:
+            c = self.contacts[name]
+            kin = self.kin
+            exprs = [c.gap(kin), c.rows(kin, SLIP)[0].velocity]
+            if kin.planar and c.friction != SMOOTH:
+                exprs.append(c.slip_velocity(kin))
+            f = compile_functions(self.layout.arguments(), [self.layout.to_plain(e) for e in exprs])
+            self._contact_fns[name] = (f, len(exprs))
+        return self._contact_fns[name]
+
+    def contact_state(self, name: str, t_, y, p) -> tuple[float, float, float | None]:
+        f, n = self.contact_functions(name)
+        vals = [float(v) for v in f(t_, *y[:2 * self.layout.n], *p)]
+        return vals[0], vals[1], (vals[2] if n > 2 else None)
+
+    def relation_functions(self, mode: dict, integrated: bool = False):
+        """(dependent coordinates' slots, q_d from the integrated relations, q̇_d from the rate relations).
+
+        The mode's equations keep the coordinates found by integrating a rate relation (their constant
+        depends on where the mode is entered); ``integrated=True`` adds those relations too, as an
+        initial configuration needs them (constant from the declared initial values).
+        """
+        key = (mode_key(mode), integrated)
+        if key not in self._relation_fns:
+            sol = self.solution(mode)
+            lay = self.layout
+            red = sol.setup.reduction
+            slots, exprs = [], []
+            for q in sol.dependent:
+                slots.append(lay.coordinates.index(q))
+                exprs.append(red.rate_map[q.diff(t)])
+            relations = dict(sol.relations)
+            if integrated:
+                from ...derive.mode import setup_mode
+
+                relations = dict(setup_mode(self.system, dict(mode)).reduction.coord_map)
+            rel_slots = [lay.coordinates.index(q) for q in relations]
+            rel_fn = compile_functions(lay.arguments(), [lay.to_plain(v) for v in relations.values()])
+            rate_fn = compile_functions(lay.arguments(), [lay.to_plain(e) for e in exprs])
+            self._relation_fns[key] = (rel_slots, rel_fn, slots, rate_fn)
+        return self._relation_fns[key]
+
+    def close_loops(self, mode: dict, t_, y, p, keep=(), tol: float = 1e-12) -> np.ndarray:
+        """Solve the mode's holonomic constraints with no closed form (a four-bar's loop closure) for its
+        dependent coordinates, by Newton's method from the given values (the independent ones and the
+        coordinates in ``keep`` stay as they are)."""
+        from scipy.optimize import root
+
+        key = ("loops", mode_key(mode))
+        if key not in self._relation_fns:
+            sol = self.solution(mode)
+            red = sol.setup.reduction
+            lay = self.layout
+            # bilateral constraints only (pins, collars): a unilateral contact's gap is an inequality
+            gaps = [r.gap for r in red.relating if r.gap is not None and not r.unilateral]
+            free = [q for q in sol.dependent if q not in sol.relations]
+            fn = compile_functions(lay.arguments(), [lay.to_plain(g) for g in gaps]) if gaps and free else None
+            self._relation_fns[key] = (fn, [lay.coordinates.index(q) for q in free])
+        fn, slots = self._relation_fns[key]
+        slots = [s_ for s_ in slots if s_ not in keep]
+        if fn is None or not slots:
+            return y
+        y = np.array(y, dtype=float)
+
+        def resid(z):
+            yy = y.copy()
+            yy[slots] = z
+            return np.asarray(fn(t_, *yy[:2 * self.layout.n], *p), dtype=float)
+
+        if np.max(np.abs(resid(y[slots]))) <= tol:
+            return y
+        out = root(lambda z: resid(z)[:len(slots)] if len(resid(z)) >= len(slots) else
+                   np.resize(resid(z), len(slots)), y[slots], method="hybr", tol=1e-14)
+        z = out.x
+        if np.max(np.abs(resid(z))) > 1e-9:
+            out = root(resid, y[slots], method="lm", tol=1e-14)
+            z = out.x
+            if np.max(np.abs(resid(z))) > 1e-9:
+                return y          # cannot be assembled from here: the checks that follow say so
+        y[slots] = z
+        return y
+
+    def project_rates(self, mode: dict, t_, y, p) -> np.ndarray:
+        """The state with the dependent rates set from the rate relations of ``mode``."""
+        _, _, slots, rate_fn = self.relation_functions(mode)
+        y = np.array(y, dtype=float)
+        if slots:
+            vals = rate_fn(t_, *y[:2 * self.layout.n], *p)
+            for s, v in zip(slots, vals):
+                y[self.layout.n + s] = float(v)
+        return y
+
+    def relation_mismatch(self, mode: dict, t_, y, p, tol: float = 1e-7) -> list[tuple[str, float]]:
+        """Integrated relations q_d = f(q_i) of ``mode`` that the state does not satisfy, when it matters.
+
+        The core integrates an exact rate relation (r φ̇ = ẋ) from the declared initial configuration;
+        a mode entered later (rolling after slipping) may have another constant of integration.  That
+        only matters when the mode's balances depend on q_d; then the mode cannot be simulated here.
+        """
+        rel_slots, rel_fn, _, _ = self.relation_functions(mode)
+        if not rel_slots:
+            return []
+        vals = rel_fn(t_, *y[:2 * self.layout.n], *p)
+        out = []
+        for s, v in zip(rel_slots, vals):
+            d = float(y[s]) - float(v)
+            if abs(d) > tol * max(1.0, abs(float(v))) and self._depends_on(mode, self.layout.coordinates[s]):
+                out.append((self.layout.names[s], d))
+        return out
+
+    def _depends_on(self, mode: dict, q) -> bool:
+        key = (mode_key(mode), q)
+        if key not in self._depends:
+            from ...base import algebra
+            from ...derive.laws.newton_euler import body_balances
+
+            setup = self.solution(mode).setup
+            F = setup.kin.F
+            dep = False
+            for bal in body_balances(setup):
+                for v in (bal.force, bal.moment, bal.mass_accel, bal.momentum_rate):
+                    for e in (F.x, F.y, F.z):
+                        s = v.dot(e)
+                        if s != 0 and s.has(q) and not algebra.is_zero(sp.diff(s, q)):
+                            dep = True
+                            break
+            self._depends[key] = dep
+        return self._depends[key]
+
+    # choosing a consistent mode (numeric/settle.py) ---------------------------------------------------
+    def regime_at(self, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: float = 1e-9) -> int:
+        """The regime of ``mode`` whose conditions hold at the state (see :func:`settle.regime_at`)."""
+        from .settle import regime_at
+
+        return regime_at(self, mode, t_, y, p, forced, zero_tol)
+
+    def settle(self, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: float = 1e-9,
+               force_tol: float = 1e-9) -> tuple[dict, int, list[str]]:
+        """The consistent (mode, regime) at a state, starting from ``mode`` (see :func:`settle.settle`)."""
+        from .settle import settle
+
+        return settle(self, mode, t_, y, p, forced, zero_tol, force_tol)
+
+    def _param_value(self, expr, p) -> float:
+        key = ("param", sp.sympify(expr))
+        if key not in self._rate_fns:
+            self._rate_fns[key] = compile_functions(list(self.layout.parameter_symbols), [sp.sympify(expr)])
+        return float(self._rate_fns[key](*p)[0])

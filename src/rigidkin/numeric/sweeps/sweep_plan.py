@@ -1,0 +1,121 @@
+"""A sweep's runs as numbers: the values of each axis, the size a table of runs may have, and each run's
+initial state completed through the constraints (trees of :mod:`rigidkin.numeric.sweeps.exprtree`).
+
+Numbers only (numpy): shared by the full sweep (:mod:`rigidkin.numeric.sweeps.sweep`) and the repeated sweep read
+from its numeric record (:mod:`rigidkin.numeric.sweeps.sweep_record`), so both plan their runs alike.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...base.errors import InputError
+
+
+def axis(spec) -> np.ndarray:
+    """Values of a swept quantity: an array, or ``(start, stop, count)`` (inclusive, evenly spaced)."""
+    if isinstance(spec, tuple) and len(spec) == 3:
+        start, stop, count = spec
+        if int(count) != count or count < 1:
+            raise InputError(f"the count of a sweep axis must be a whole number ≥ 1, not {count}.")
+        return np.linspace(float(start), float(stop), int(count))
+    arr = np.atleast_1d(np.asarray(spec, dtype=float))
+    if arr.ndim != 1 or not np.all(np.isfinite(arr)):
+        raise InputError("the values of a sweep axis must be finite numbers.")
+    return arr
+
+
+def axis_length(spec) -> int:
+    """How many values an axis spec gives, without making them."""
+    if isinstance(spec, tuple) and len(spec) == 3:
+        try:
+            return max(int(spec[2]), 0)
+        except (TypeError, ValueError, OverflowError):
+            raise InputError(f"the count of a sweep axis must be a whole number ≥ 1, not {spec[2]!r}.") from None
+    return int(np.size(spec))
+
+
+def check_runs(lengths: list[int], n: int, n_p: int, events: int = 4, grid: bool = True) -> int:
+    """The number of runs of a sweep with axes of these ``lengths`` (a model of ``n`` coordinates and ``n_p``
+    parameters), refused (InputError) when its table would not fit in memory.
+
+    Every run keeps its parameters, inputs, initial and final states, and each event's time and
+    state (``events``: how many events, estimated); see :data:`rigidkin.base.limits.MEMORY_LIMIT`.
+    """
+    from ...base.limits import check_memory, sweep_bytes
+
+    runs = (math.prod(lengths) if grid else max(lengths)) if lengths else 1
+    per_run = 3 * n_p + 2 * len(lengths) + 6 * 2 * n + 2 * events * (2 * n + 1) + 8
+    check_memory(sweep_bytes(runs, per_run), f"a sweep of {runs:,} runs", "sweep",
+                 hint="Use fewer values per axis (or fewer axes), or split the sweep into several and join the "
+                      "tables.")
+    return runs
+
+
+def declared_state(system, n: int) -> np.ndarray:
+    """The state the problem declares: each coordinate's initial value and rate (zero where none is given)."""
+    y = np.zeros(2 * n)
+    for i, c in enumerate(system.coordinate_info.values()):
+        if c.initial is not None:
+            y[i] = float(c.initial)
+        if c.rate is not None:
+            y[n + i] = float(c.rate)
+    return y
+
+
+def runs_grid(vary, base_p, y_base, parameters, labels, given: set, grid: bool = True, unknown=None):
+    """(inputs per run, parameters runs × n_p, states runs × 2n): every combination of the axes of ``vary``
+    (``grid``) or the axes side by side, over the base values; ``given`` gains the state slots the axes set.
+    ``unknown(name)``: the error for an axis that is neither a parameter nor a state label."""
+    axes = {str(k): axis(spec) for k, spec in (vary or {}).items()}
+    if grid:
+        mesh = np.meshgrid(*axes.values(), indexing="ij") if axes else []
+        inputs = {k: m.ravel() for k, m in zip(axes, mesh)}
+        runs = int(np.prod([len(a) for a in axes.values()])) if axes else 1
+    else:
+        lengths = {len(a) for a in axes.values()}
+        if len(lengths) > 1:
+            raise InputError("zipped sweep axes must have equal lengths.", hint="Use a grid, or give equal counts.")
+        inputs = dict(axes)
+        runs = lengths.pop() if lengths else 1
+    parameters, labels = list(parameters), list(labels)
+    P = np.tile(np.asarray(base_p, dtype=float), (runs, 1))
+    Y = np.tile(np.asarray(y_base, dtype=float), (runs, 1))
+    for name, values in inputs.items():
+        if name in parameters:
+            P[:, parameters.index(name)] = values
+        elif name in labels:
+            Y[:, labels.index(name)] = values
+            given.add(labels.index(name))
+        else:
+            raise unknown(name) if unknown else InputError(f"'{name}' is not a parameter or state of the sweep.")
+    return inputs, P, Y
+
+
+def complete(Y: np.ndarray, P: np.ndarray, rel: tuple[list, list], given: set, args=None) -> None:
+    """Each run's dependent coordinates, then rates, from the constraints (``relations``), in place; the slots
+    in ``given`` keep their values."""
+    from .exprtree import evaluate
+
+    runs = len(Y)
+    cols = [np.zeros(runs), *Y.T, *P.T]          # views: each slot completed is seen by the next
+    for i, expr in (*rel[0], *rel[1]):
+        if i in given:
+            continue
+        Y[:, i] = evaluate(expr, cols, runs) if isinstance(expr, list) else _vector_eval(args, expr, cols, runs)
+
+
+#: lambdify's namespace: numpy's own functions (``modules="numpy"`` would star-import numpy's every submodule,
+#: a tenth of a second at each command's start).
+_NUMPY = ({"numpy": np}, np)
+
+
+def _vector_eval(args, expr, columns, runs) -> np.ndarray:
+    """``expr`` (of the layout's arguments) at every run at once."""
+    from ..compiled.codesafe import safe_lambdify
+
+    f = safe_lambdify(args, [expr], modules=list(_NUMPY), cse=False, where="sweep")
+    with np.errstate(all="ignore"):
+        return np.broadcast_to(np.asarray(f(*columns)[0], dtype=float), (runs,)).copy()
