@@ -84,7 +84,6 @@ def relative(theta):
 
 def measure_articulated(n, use_c=True):
     from rigidkin.numeric.large.articulated import ArticulatedModel
-
     from rigidkin.numeric.state import parameter_vector
 
     s = chain(n)

@@ -14,13 +14,13 @@ import time
 
 import numpy as np
 import pytest
-from rigidkin.numeric.large.articulated import ArticulatedModel
-from rigidkin.numeric.large.route import SYMBOLIC_LIMIT, numeric_route
-from rigidkin.numeric.large.tree import NotATree, read_tree
 
 import rigidkin as rk
 from rigidkin.commands.common import load_system
 from rigidkin.numeric import simulate
+from rigidkin.numeric.large.articulated import ArticulatedModel
+from rigidkin.numeric.large.route import SYMBOLIC_LIMIT, numeric_route
+from rigidkin.numeric.large.tree import NotATree, read_tree
 from rigidkin.numeric.rhs import compile_functions
 from rigidkin.numeric.state import StateLayout, parameter_vector
 

@@ -74,7 +74,7 @@ def _resolve(module: str, node: ast.ImportFrom) -> str | None:
     if not node.level:
         return node.module
     base = module.split(".")
-    if not MODULES[module].name == "__init__.py":
+    if MODULES[module].name != "__init__.py":
         base = base[:-1]
     base = base[: len(base) - (node.level - 1)]
     return ".".join(base + ([node.module] if node.module else []))
@@ -108,8 +108,12 @@ def _imports(module: str):
                 if name.split(".")[0] in HEAVY and not inner and not typing_only:
                     heavy.add(name.split(".")[0])
                 if name.split(".")[0] == "rigidkin" and _known(name) != module:
-                    # an import for type checkers only runs at no time: it counts as one inside a function
-                    found.append((_known(name), child.lineno, inner or typing_only))
+                    # an import for type checkers only runs at no time: it counts as one inside a function;
+                    # importing a.b.c runs the packages a and a.b first: they are imported too
+                    target = _known(name).split(".")
+                    for i in range(2, len(target) + 1):
+                        if ".".join(target[:i]) != module and not module.startswith(".".join(target[:i]) + "."):
+                            found.append((".".join(target[:i]), child.lineno, inner or typing_only))
             visit(child, deeper, for_types)
 
     visit(tree, False, False)

@@ -19,12 +19,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
-from rigidkin.numeric.large.projected import ProjectedModel
 from scipy.integrate import solve_ivp
 from sympy.physics.vector import ReferenceFrame, dynamicsymbols
 
 import rigidkin as rk
 from rigidkin.model.speeds import quaternion_from_axis_angle, quaternion_matrix, speeds_of
+from rigidkin.numeric.large.projected import ProjectedModel
 
 t = dynamicsymbols._t
 

@@ -23,6 +23,7 @@ import os
 import sys
 import warnings
 
+from . import examples
 from .base.errors import RigidkinError
 from .base.textsafe import terminal_safe
 from .commands.deadline import TimeLimitReached, deadline
@@ -56,7 +57,6 @@ def build_parser() -> argparse.ArgumentParser:
 def complete_problem(prefix: str = "", **_) -> list[str]:
     """Shell completion of a PROBLEM: the bundled examples' names and the ``.toml`` files (and folders)
     that start with ``prefix``."""
-    from . import examples
 
     found = [n for n in examples.names() if n.startswith(prefix)]
     folder, _, stem = prefix.rpartition("/")

@@ -16,6 +16,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base import algebra
 from ..base.errors import InputError, RegimeError, RigidkinError
 from ..base.printing import text
+from ..derive.laws import impulse as law
 from ..derive.solution import repeatable
 from .equilibrium import equilibria
 from .events import _num, condition_expression, event, extreme, threshold
@@ -271,7 +272,6 @@ def _value(system, question, f, context):
 
 
 def _impulse(system, question, f, context):
-    from ..derive.laws import impulse as law
 
     start = _start(f, context)
     before = {k: v for k, v in start.items() if isinstance(k, sp.Derivative)}
@@ -314,7 +314,6 @@ def _regime_index(system, f) -> int | None:
 
 
 def _interval(system, question, f, context):
-    from ..derive.laws import impulse as law
 
     start = _start(f, context)
     res = law.interval(system, start, duration=f.get("duration"), until=f.get("until"),

@@ -21,8 +21,10 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ..base import algebra
-from ..base.errors import RegimeError, RigidkinError
+from ..base.errors import InputError, RegimeError, RigidkinError
 from ..base.printing import text
+from ..numeric.simulate import Phase as SimPhase
+from ..numeric.simulate import simulate
 from .integrals import along_motion, energy_integral, single_regime
 from .states import at_state, full_state, state_from_names
 
@@ -205,9 +207,6 @@ def event_by_simulation(solution, when, start: dict | None = None, name: str = "
     exactly such a switch it is that switch's time and state.  A condition on a reaction holds only in
     the mode it was written for, so the answer says so when the mode changes first.
     """
-    from ..base.errors import InputError
-    from ..numeric.simulate import Phase as SimPhase
-    from ..numeric.simulate import simulate
 
     system = solution.system
     missing = [p.name for p in system.parameter_info.values() if p.value is None]

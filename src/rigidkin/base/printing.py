@@ -12,6 +12,8 @@ import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols, vlatex
 from sympy.printing.str import StrPrinter
 
+from ..model.speeds import quaternion_groups
+
 t = dynamicsymbols._t
 
 GREEK = {
@@ -150,6 +152,5 @@ def euler_norms(system) -> list[tuple[str, object]]:
     equations of motion are written with that sum = 1 (``solution._readable_eom``)."""
     import sympy as sp
 
-    from ..model.speeds import quaternion_groups
 
     return [(g.frame.name, sp.Add(*[e**2 for e in g.coordinates])) for g in quaternion_groups(system)]

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from .errors import InputError
+from .private_files import folder_problem
 
 _BASES = ("mass", "length", "time", "current", "temperature", "substance", "luminosity")
 _SYMBOLS = {"mass": "M", "length": "L", "time": "T", "current": "I", "temperature": "Θ",
@@ -64,7 +65,6 @@ def _definitions_folder():
         folder.mkdir(mode=0o700, exist_ok=True)
     except OSError:
         return None
-    from .private_files import folder_problem
 
     return folder if not folder_problem(folder) else None
 

@@ -11,9 +11,13 @@ from __future__ import annotations
 import dataclasses
 import json
 
+from ..base.errors import RigidkinError
+from ..base.textsafe import terminal_safe
+from .common import guarded, json_safe, open_problem, progress, with_file
+from .options import add_no_cache, add_timeout, parse_modes
+
 
 def register(sub) -> None:
-    from .options import add_no_cache, add_timeout
 
     p = sub.add_parser("check", help="cross-check the equations of motion by every law, and their dimensions")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
@@ -46,9 +50,6 @@ def parse_expectation(text: str, system):
 
 def run(args) -> int:
     from ..base.printing import text
-    from ..base.textsafe import terminal_safe
-    from .common import guarded, json_safe, open_problem, progress, with_file
-    from .options import parse_modes
 
     with progress(f"Reading {args.problem}"):
         derived = guarded(args, open_problem, args)
@@ -60,7 +61,6 @@ def run(args) -> int:
 
         for w in laws:
             parse_method(w)
-    from ..base.errors import RigidkinError
     from ..derive.laws.crosscheck import cross_check, expectation
 
     try:

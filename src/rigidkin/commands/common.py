@@ -8,7 +8,13 @@ import threading
 from contextlib import contextmanager
 from pathlib import Path
 
+from .. import examples
 from ..base.errors import RigidkinError
+from ..base.textsafe import terminal_safe
+from ..base.timelimit import time_limit as limit
+from ..base.units import parse_quantity
+from ..io.derivation_cache import Derivation
+from .deadline import set_step
 
 
 def load_system(problem: str):
@@ -17,7 +23,6 @@ def load_system(problem: str):
     Returns (system, spec) where ``spec`` is the parsed problem file (None for a Python example).
     A bundled example with a problem file (``examples/ladder.toml``) is read from that file.
     """
-    from .. import examples
     from ..io.problem import load_problem
 
     path = Path(problem)
@@ -38,7 +43,6 @@ def load_system(problem: str):
 def open_problem(args):
     """The problem of ``args.problem`` as a :class:`rigidkin.io.derivation_cache.Derivation`: read from the
     derivation cache when it was derived before (unless ``--no-cache``), else loaded from its file."""
-    from ..io.derivation_cache import Derivation
 
     return Derivation(args.problem, lambda: load_system(args.problem), use=not getattr(args, "no_cache", False))
 
@@ -48,7 +52,6 @@ def progress(message: str, delay: float = 1.0):
     """Show a rich status line on a terminal's stderr when the step takes longer than ``delay`` seconds."""
     import sys
 
-    from .deadline import set_step
 
     set_step(message)
     if not _is_terminal(sys.stderr):            # rich (slow to import) only where something is shown
@@ -96,7 +99,6 @@ class TimeLimit(RigidkinError):
 
 def time_limit(seconds: float | None, what: str):
     """Stop ``what`` with a clear error after ``seconds`` (main thread, POSIX; otherwise no limit)."""
-    from ..base.timelimit import time_limit as limit
 
     def error():
         return TimeLimit(f"{what} took longer than {seconds:g} s and was stopped.",
@@ -109,7 +111,6 @@ def json_safe(text: str) -> str:
     """JSON text for a terminal: control characters inside its strings written as ``\\uXXXX`` escapes."""
     import json
 
-    from ..base.textsafe import terminal_safe
 
     if terminal_safe(text) == text:
         return text
@@ -142,7 +143,6 @@ def value(text: str, where: str) -> float:
     """
     import math
 
-    from ..base.units import parse_quantity
 
     v = parse_quantity(text, None, where)
     if not math.isfinite(v):

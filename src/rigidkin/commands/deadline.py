@@ -21,6 +21,9 @@ import signal
 import threading
 import time
 
+from ..base.timelimit import time_limit
+from .options import EXIT_TIME
+
 #: Seconds after the limit before the watchdog thread, and then the watchdog process, stop the program.
 GRACE_THREAD, GRACE_PROCESS = 1.0, 3.0
 
@@ -55,8 +58,6 @@ def deadline(seconds: float | None, hard_stop: bool = False):
     if not seconds or seconds <= 0:
         yield
         return
-    from ..base.timelimit import time_limit
-    from .options import EXIT_TIME
 
     set_step("")
     done = threading.Event()

@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import json
 
+from .common import guarded, json_safe, progress
+from .options import add_timeout
+
 
 def register(sub) -> None:
-    from .options import add_timeout
 
     p = sub.add_parser("grade", help="grade a hand derivation (a worksheet) step by step")
     p.add_argument("worksheet", help="a worksheet file (.toml): problem = NAME or FILE and [[step]] tables")
@@ -26,7 +28,6 @@ def run(args) -> int:
     from ..grading.report import as_data, as_html, as_text
     from ..grading.steps import grade
     from ..grading.worksheet import load_worksheet
-    from .common import guarded, json_safe, progress
 
     if args.output:
         from ..base.outfile import check_target

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from .. import examples
+from ..base.textsafe import terminal_safe
+
 
 def register(sub) -> None:
     p = sub.add_parser("list", help="list the bundled examples")
@@ -12,8 +15,6 @@ def run(args) -> int:
     """One line per example: its name, its form and its title (read from the file: nothing is built)."""
     import tomllib
 
-    from .. import examples
-    from ..base.textsafe import terminal_safe
 
     for name in examples.names():
         form = "toml" if (examples.HERE / f"{name}.toml").exists() else "py"

@@ -22,6 +22,9 @@ import argparse
 import math
 import sys
 
+from ..base.errors import InputError
+from ..base.textsafe import terminal_safe
+
 EXIT_OK, EXIT_UNANSWERED, EXIT_INPUT, EXIT_STOPPED, EXIT_TIME, EXIT_INTERRUPTED = 0, 1, 2, 3, 4, 130
 
 #: The longest time limit (``--timeout``) accepted: one day.  0 means no limit.
@@ -38,7 +41,6 @@ class Parser(argparse.ArgumentParser):
     """An ArgumentParser whose refusals are one paragraph on stderr, control characters escaped, status 2."""
 
     def error(self, message: str):
-        from ..base.textsafe import terminal_safe
 
         text = terminal_safe(message.removeprefix("argument ").rstrip("."), newlines=False)
         sys.stderr.write(f"rigidkin: {text}. See '{terminal_safe(self.prog, newlines=False)} --help'.\n")
@@ -136,7 +138,6 @@ def add_no_cache(p) -> None:
 
 def parse_modes(items) -> dict:
     """``--mode CONTACT=STATE ...`` → {contact: state} (states: open, slip, stick)."""
-    from ..base.errors import InputError
 
     out = {}
     for it in items:

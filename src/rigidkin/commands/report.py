@@ -7,12 +7,15 @@ inline figures, an inline animation player); Markdown and LaTeX put their figure
 
 from __future__ import annotations
 
-from ..base.errors import InputError
+from ..base.errors import InputError, RigidkinError
+from ..base.outfile import OutputError, check_target, writing
 from ..base.textsafe import terminal_safe
+from .common import guarded, open_problem, progress, value, with_file
+from .options import add_no_cache, add_timeout, end_time
+from .solve import answer_questions
 
 
 def register(sub) -> None:
-    from .options import add_no_cache, add_timeout, end_time
 
     p = sub.add_parser("report", help="write the step-by-step derivation as HTML, Markdown or LaTeX",
                        description="Write the derivation of a problem (frames, kinematics, free-body diagrams, "
@@ -52,18 +55,13 @@ def _pairs(items, what: str) -> dict:
 
 
 def _numbers(pairs: dict, what: str) -> dict:
-    from .common import value
 
     return {k: value(v, f"{what} {k}") for k, v in pairs.items()}
 
 
 def run(args) -> int:
-    from ..base.errors import RigidkinError
-    from ..base.outfile import OutputError, check_target, writing
     from ..report.document import Animation, build_document
     from ..report.output import format_of, write_document
-    from .common import guarded, open_problem, progress, with_file
-    from .solve import answer_questions
 
     fmt = format_of(args.output)
     check_target(args.output, "the report")

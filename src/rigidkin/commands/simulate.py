@@ -15,10 +15,15 @@ import time
 import warnings
 
 from ..base.errors import InputError
+from ..base.limits import check_memory, history_bytes
+from ..base.outfile import check_target
+from ..base.textsafe import terminal_safe
+from .common import guarded, json_safe, open_problem
+from .deadline import set_step
+from .options import EXIT_STOPPED, add_no_cache, add_timeout, end_time, points, start_time, tolerance
 
 
 def register(sub) -> None:
-    from .options import add_no_cache, add_timeout, end_time, points, start_time, tolerance
 
     p = sub.add_parser("simulate", help="simulate the motion, switching contact and friction modes exactly",
                        description="Simulate a problem through its contact modes (contacts opening, impacts, "
@@ -123,7 +128,6 @@ def _simulate(system, span, **kw):
 
 def check_points(system, points: int) -> None:
     """Refuse ``--points`` whose histories would not fit in memory (estimated before anything is sampled)."""
-    from ..base.limits import check_memory, history_bytes
 
     n, n_c = len(system.coordinate_info), len(system.constraints)
     columns = 2 * n + 1 + 8 * n_c + 6          # t, state, work; reactions (6 at a 3D joint), friction limits; T, U, E
@@ -134,13 +138,8 @@ def check_points(system, points: int) -> None:
 
 def run(args) -> int:
     """Exit status 0, or 3 (EXIT_STOPPED) when the simulation stops before its end time."""
-    from ..base.outfile import check_target
-    from ..base.textsafe import terminal_safe
     from ..numeric.figure import figure_formats
     from ..numeric.rhs import SimulationError
-    from .common import guarded, json_safe, open_problem
-    from .deadline import set_step
-    from .options import EXIT_STOPPED
 
     if args.csv:
         check_target(args.csv, "the histories")

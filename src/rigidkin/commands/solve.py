@@ -5,11 +5,14 @@ from __future__ import annotations
 import json
 import warnings
 
-from .options import EXIT_UNANSWERED, parse_modes
+from ..base.errors import RigidkinError
+from ..base.textsafe import terminal_safe
+from ..io.derivation_cache import read_output, write_output
+from .common import guarded, json_safe, open_problem, progress, with_file
+from .options import EXIT_UNANSWERED, add_no_cache, add_timeout, parse_modes
 
 
 def register(sub) -> None:
-    from .options import add_no_cache, add_timeout
 
     p = sub.add_parser("solve", help="derive the equations of motion, reactions and answers")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
@@ -35,8 +38,6 @@ def answer_questions(system, spec, args, derived=None) -> tuple[dict, list[str]]
 
     With ``derived`` (a :class:`rigidkin.io.derivation_cache.Derivation`) the answers are read from it when
     cached, and kept in it when every question was answered."""
-    from ..base.errors import RigidkinError
-    from .common import guarded, progress
 
     questions = spec.questions if spec is not None else ()
     if not questions or args.no_answers:
@@ -121,7 +122,6 @@ def run(args) -> int:
     """Exit status 0, or 1 (EXIT_UNANSWERED) when a question of the file could not be answered.
 
     A solve printed before for the same file and options is printed again from the cache at once."""
-    from ..io.derivation_cache import read_output, write_output
 
     use = not args.no_cache
     options = ("solve", args.method, args.format, bool(args.no_answers), tuple(args.mode))
@@ -143,11 +143,8 @@ def run(args) -> int:
 
 
 def _solve(args) -> tuple[str, int]:
-    from ..base.errors import RigidkinError
-    from ..base.textsafe import terminal_safe
     from ..io.results import solution_data
     from ..report.text import problem_text
-    from .common import guarded, json_safe, open_problem, progress, with_file
 
     with progress(f"Reading {args.problem}"):
         derived = guarded(args, open_problem, args)

@@ -15,10 +15,18 @@ import sys
 import time
 
 from ..base.errors import InputError
+from ..base.outfile import check_target
+from ..base.textsafe import terminal_safe
+from ..base.units import MAX_MAGNITUDE
+from ..io.derivation_cache import read_kept, write_kept
+from .common import guarded, open_problem
+from .common import value as quantity
+from .deadline import set_step
+from .options import add_no_cache, add_timeout, chunk, end_time, threads, tolerance, workers
+from .simulate import _pairs as pairs
 
 
 def register(sub) -> None:
-    from .options import add_no_cache, add_timeout, chunk, end_time, threads, tolerance, workers
 
     p = sub.add_parser("sweep", help="simulate over a grid of parameters and initial values (compiled, parallel)",
                        description="Simulate one problem over a grid of parameter values and initial states, in "
@@ -57,7 +65,6 @@ def register(sub) -> None:
 
 
 def _pairs(items, what) -> dict:
-    from .simulate import _pairs as pairs
 
     return pairs(items, what)
 
@@ -65,9 +72,7 @@ def _pairs(items, what) -> dict:
 def _value(text: str, where: str) -> float:
     """A value of an axis: a plain number read as it is (no unit registry to load), else through
     rigidkin's quantity parser (units, and every refusal: not finite, too large, not a quantity)."""
-    from ..base.units import MAX_MAGNITUDE
     from ..numeric.sweeps.sweep_record import plain_number
-    from .common import value as quantity
 
     v = plain_number(text)
     if v is not None and abs(v) <= MAX_MAGNITUDE:
@@ -96,11 +101,7 @@ def parse_axis(text: str, where: str):
 
 
 def run(args) -> int:
-    from ..base.outfile import check_target
-    from ..base.textsafe import terminal_safe
     from ..numeric.sweeps.tables import require_parquet, table_format
-    from .common import guarded, open_problem
-    from .deadline import set_step
 
     check_target(args.output, "the sweep table")
     if table_format(args.output) == "parquet":
@@ -163,7 +164,6 @@ def _record_options(args, mode) -> tuple:
 def _from_record(args, vary, sets, initial, mode):
     """The sweep from its numeric record when a previous sweep of this problem kept one (no sympy imported,
     nothing derived); None: take the full route."""
-    from ..io.derivation_cache import read_kept
     from ..numeric.sweeps.sweep_record import SUFFIX, run
 
     rec = read_kept(args.problem, _record_options(args, mode), SUFFIX, use=not args.no_cache)
@@ -173,7 +173,6 @@ def _from_record(args, vary, sets, initial, mode):
 
 
 def _keep_record(args, mode, record: dict) -> None:
-    from ..io.derivation_cache import write_kept
     from ..numeric.sweeps.sweep_record import SUFFIX
 
     write_kept(args.problem, _record_options(args, mode), SUFFIX, record, use=not args.no_cache)

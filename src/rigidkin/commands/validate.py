@@ -3,9 +3,13 @@ without deriving the equations of motion."""
 
 from __future__ import annotations
 
+from ..base.errors import RigidkinError
+from ..base.textsafe import terminal_safe
+from .common import guarded, load_system, progress, with_file
+from .options import add_timeout
+
 
 def register(sub) -> None:
-    from .options import add_timeout
 
     p = sub.add_parser("validate", help="check a problem file without solving it")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name")
@@ -14,11 +18,9 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from .common import guarded, load_system, progress, with_file
 
     with progress(f"Reading {args.problem}"):
         system, spec = guarded(args, load_system, args.problem)
-    from ..base.errors import RigidkinError
     from ..derive.mode import setup_mode
 
     try:
@@ -30,7 +32,6 @@ def run(args) -> int:
     source = str(spec.path) if spec is not None else f"bundled example {args.problem}"
     indep = ", ".join(q.func.__name__ for q in red.independent) or "none"
     dep = ", ".join(q.func.__name__ for q in red.dependent)
-    from ..base.textsafe import terminal_safe
 
     print(terminal_safe(f"{source}: valid. {system.title}: {len(system.bodies)} bodies, {len(system.coordinate_info)} "
           f"coordinates (independent: {indep}{'; dependent: ' + dep if dep else ''}), "

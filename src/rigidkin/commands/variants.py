@@ -10,9 +10,13 @@ from __future__ import annotations
 
 import json
 
+from ..base.errors import InputError
+from ..base.textsafe import terminal_safe
+from .common import guarded, json_safe, progress
+from .options import add_timeout
+
 
 def register(sub) -> None:
-    from .options import add_timeout
 
     p = sub.add_parser("variants", help="make a problem set: variants with changed values and checked answer keys")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name")
@@ -31,10 +35,7 @@ def register(sub) -> None:
 def run(args) -> int:
     import math
 
-    from ..base.errors import InputError
-    from ..base.textsafe import terminal_safe
     from ..grading.variants import as_data, as_moodle, as_text, make_set, parse_vary
-    from .common import guarded, json_safe, progress
 
     if not (math.isfinite(args.tolerance) and 0 < args.tolerance < 1):
         raise InputError("--tolerance is a relative tolerance between 0 and 1.", where="--tolerance")

@@ -17,6 +17,7 @@ from ..base.errors import ModelError
 from ..base.printing import text
 from ..base.trace import LazyEquations, Trace
 from ..model.loads import Application, SignChoice
+from ..model.speeds import is_quasi
 from .kinematics import Kinematics, Reduction, reduce_constraints
 
 
@@ -158,7 +159,6 @@ def _check_model(system, kin) -> None:
         for a in (fr.angle,) + tuple(fr.angles or ()):
             if a is not None:
                 used |= {f for f in sp.sympify(a).atoms(sp.Function)}
-    from ..model.speeds import is_quasi
 
     unused = [q for q in system.coordinates if q not in used and not is_quasi(system, q)]
     if unused:

@@ -33,14 +33,16 @@ from types import MappingProxyType
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..base import algebra
+from ..base import algebra, display
 from ..base.errors import RegimeError, RigidkinError
 from ..base.linear import solve_linear
 from ..base.printing import latex, text
 from ..base.trace import LazyEquations, Trace
 from ..base.trigforms import compact
+from ..base.vectorops import dot, in_frame
 from ..model.speeds import quaternion_groups
 from .determinacy import _determinacy
+from .evaluation import reactions_at
 from .kinematics import linear_form
 from .mode import ModeSetup
 from .regime import Condition, Deferred, LazyMap, Regime  # noqa: F401 (Condition, LazyMap: re-exported)
@@ -119,7 +121,6 @@ class Solution:
         """Every reaction as a number at ``state`` ({q: value, q̇: value}; parameters from ``values`` or
         their declared values): finite wherever the physics is (a numeric solve of the balance equations
         where a closed form has 0/0)."""
-        from .evaluation import reactions_at
 
         return reactions_at(self, state, values, regime)
 
@@ -159,14 +160,10 @@ class Solution:
 
     # presentation ------------------------------------------------------------------------------
     def __str__(self) -> str:
-        from ..report.text import solution_text
-
-        return solution_text(self)
+        return display.render(self, "text")
 
     def _repr_html_(self) -> str:
-        from ..report.jupyter import solution_html
-
-        return solution_html(self)
+        return display.render(self, "html")
 
     def _repr_latex_(self) -> str:
         lines = []
@@ -337,7 +334,6 @@ def _projected_rows(setup, balances, sign_map):
     frame when it is written in more than two); the force (or moment) is resolved once into each of those
     frames, and each dot product is a sum of products.
     """
-    from ..base.vectorops import dot, in_frame
 
     rates = [q.diff(t) for q in setup.reduction.independent]
     Fr = setup.kin.F.ref

@@ -15,9 +15,11 @@ import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols, outer
 
 from ..base.errors import RigidkinError
+from ..commands.common import load_system
+from ..derive.laws import energy
 from ..derive.laws.newton_euler import body_balances
 from ..model.speeds import quaternion_groups
-from .space import Sampler, plain_accel, to_plain
+from .space import Sampler, free_dim, plain_accel, to_plain
 
 t = dynamicsymbols._t
 
@@ -94,7 +96,6 @@ class Reference:
     def determinate_like(self, rows, regime) -> bool:
         """The rows imply as many equations of motion as the engine's balance equations do (not more: an
         inconsistent set implies anything; not fewer)."""
-        from .space import free_dim
 
         key = ("free", id(regime))
         if key not in self._rows:
@@ -249,7 +250,6 @@ class Reference:
         return out
 
     def energy_equation(self):
-        from ..derive.laws import energy
 
         eqs = energy.equations(self.setup)
         return [e.expr for e in eqs]
@@ -263,7 +263,6 @@ def _shift(m, d: Vector, F) -> object:
 
 def reference(ref: str, mode: dict | None = None) -> Reference:
     """The engine's derivation of the problem ``ref`` (a bundled name or a file path), cached per run."""
-    from ..commands.common import load_system
     from ..io.problem import system_scope
 
     mode = dict(mode or {})

@@ -15,6 +15,7 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ..base import algebra
+from ..base.dimensions import check_equation, symbol_dimensions
 from ..base.printing import text
 
 t = dynamicsymbols._t
@@ -139,7 +140,6 @@ def _pair(U, R, scale) -> TermDiff:
 
 def dimension_problem(ref, lhs, rhs) -> str | None:
     """The first dimensionally inconsistent term of ``lhs = rhs``, in words (None: consistent)."""
-    from ..base.dimensions import check_equation, symbol_dimensions
 
     try:
         rep = check_equation(lhs, rhs, symbol_dimensions(ref.system, ref.setup), "claim")

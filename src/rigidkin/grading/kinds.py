@@ -23,8 +23,10 @@ import numpy as np
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
+from ..analysis.answers import numeric_values_from
 from ..base.errors import InputError
 from ..base.printing import text
+from ..derive.laws.newton_euler import body_loads
 from . import space
 from .engine import Reference
 from .mistakes import kinematic_variants
@@ -146,7 +148,6 @@ def _items(st: Step) -> list[str]:
 
 
 def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
-    from ..derive.laws.newton_euler import body_loads
     from ..io.expressions import parse_vector
 
     bodies = ref.system.bodies
@@ -270,7 +271,6 @@ def _values_of(answer) -> list:
 
 
 def grade_answer(ref: Reference, st: Step) -> StepResult:
-    from ..analysis.answers import numeric_values_from
     from ..io.expressions import parse_scalar
 
     res = StepResult(st.index, st.kind, INCORRECT)

@@ -21,7 +21,7 @@ from ..base.errors import InputError, RigidkinError
 from ..base.printing import text
 from . import space
 from .engine import Reference, reference
-from .feedback import dimension_problem, term_diff
+from .feedback import dimension_problem, expandable, term_diff
 from .mistakes import force_candidates, moment_candidates
 from .worksheet import Step, Worksheet, load_worksheet
 
@@ -415,7 +415,6 @@ def _modified_equations(ref: Reference, mods) -> list:
 
 def _best_diff(ref: Reference, st: Step, expr, reg):
     """The engine's equation nearest to the student's, and the term-by-term differences."""
-    from .feedback import expandable
 
     student = ref.scalar(expr, reg)
     if not expandable(student):

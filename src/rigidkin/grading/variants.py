@@ -21,10 +21,13 @@ from pathlib import Path
 
 import sympy as sp
 
+from .. import examples
+from ..analysis.answers import answer, numeric_values_from
 from ..base.errors import InputError, RigidkinError
 from ..base.printing import text
 from ..base.textsafe import html_text, is_identifier
 from ..base.units import LENGTH, TIME, to_si
+from ..io.problem import build_problem, read_toml
 
 MAX_COUNT = 200
 DEFAULT_RTOL = 0.01
@@ -94,8 +97,6 @@ def _in_unit(text_value: str, unit: str, where: str) -> float:
 
 def make_set(problem: str, count: int, seed: int, vary: dict, rtol: float = DEFAULT_RTOL) -> ProblemSet:
     """``count`` variants of ``problem`` (a bundled name or a problem file) with checked answer keys."""
-    from .. import examples
-    from ..io.problem import build_problem, read_toml
 
     if not 1 <= count <= MAX_COUNT:
         raise InputError(f"--count {count} is out of range (1 to {MAX_COUNT}).", where="--count")
@@ -128,7 +129,6 @@ def make_set(problem: str, count: int, seed: int, vary: dict, rtol: float = DEFA
             if p.value is not None and p.value != 0 and p.dimension != LENGTH / TIME**2:
                 v = p.value / to_si(1.0, p.unit or None, name)
                 ranges[name] = (0.8 * v, 1.2 * v) if v > 0 else (1.2 * v, 0.8 * v)
-    from ..analysis.answers import answer
 
     base_answers, context = {}, {}
     for q in base_spec.questions:
@@ -177,7 +177,6 @@ def _labelled(a) -> list[tuple[str, sp.Expr]]:
 
 
 def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
-    from ..analysis.answers import answer, numeric_values_from
 
     values = numeric_values_from(system)
     context = {}

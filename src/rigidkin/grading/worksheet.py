@@ -29,6 +29,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .. import examples
 from ..base.errors import InputError
 from ..base.textsafe import is_identifier
 from ..io.expressions import MAX_LENGTH
@@ -136,7 +137,6 @@ def _claim_text(value, loc, *path) -> str:
 
 
 def _problem_ref(problem: str, path: Path, where: str) -> str:
-    from .. import examples
 
     if problem in examples.names() and not problem.endswith(".toml"):
         return problem

@@ -32,8 +32,9 @@ import sys
 import warnings
 from pathlib import Path
 
-from .. import __version__
+from .. import __version__, examples
 from ..base.private_files import folder_problem, regular_and_ours, unsafe_ancestor, write_private
+from ..base.trace import Trace
 
 MAGIC = b"rigidkin-derivation-2\n"
 SECRET_NAME = "secret.key"
@@ -120,7 +121,6 @@ def _code_fingerprint() -> bytes:
 
 def problem_source(problem: str) -> tuple[str, bytes] | None:
     """(resolved path or example name, bytes) of a problem as ``load_system`` reads it; None: not cacheable."""
-    from .. import examples
 
     path = Path(problem)
     try:
@@ -228,7 +228,6 @@ def dumps(entry: dict) -> bytes | None:
     except ImportError:                   # a dependency of rigidkin; without it nothing is kept
         return None
 
-    from ..base.trace import Trace
     from .spec import ProblemSpec
 
     system = entry["system"]

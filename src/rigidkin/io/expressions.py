@@ -35,7 +35,7 @@ import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
 from ..base.errors import InputError
-from ..model.checks import numeric_value
+from ..model.checks import check_identifier, numeric_value
 from .scope import Scope, default_scope  # noqa: F401  (public here too: the language's scope)
 
 t = dynamicsymbols._t
@@ -512,7 +512,6 @@ def parse_condition(text, scope: Scope, where: str | None = None) -> sp.core.rel
 def check_name(name: str, kind: str, where: str | None = None) -> str:
     """A name a problem file declares: an ASCII identifier as :func:`rigidkin.model.checks.check_identifier`
     allows it (no keyword, no name the engine makes), and not a word of the expression language."""
-    from ..model.checks import check_identifier
 
     check_identifier(name, kind, where, InputError)
     if name in RESERVED:

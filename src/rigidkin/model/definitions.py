@@ -29,6 +29,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..base.errors import ModelError
 from ..base.units import Dimension
+from .checks import numeric_value
 
 t = dynamicsymbols._t
 
@@ -193,7 +194,6 @@ def define(system, name: str, expression, unit: str | None = None, description: 
 
 def _value(system, expr, name: str, where: str) -> float | None:
     """The value with the parameters' values, checked real and finite (None when some have none)."""
-    from .checks import numeric_value
 
     vals = system.parameter_values()
     full = expand(expr)

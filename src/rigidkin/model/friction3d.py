@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.physics.vector import Vector
 
+from ..base.trace import LazyEquations
 from .loads import Application, SlidingFriction
 
 
@@ -97,7 +98,6 @@ class SlidingFriction3D(SlidingFriction):
 
     def trace_kinematics(self, setup) -> None:
         """The slip velocity and its direction, as the method states them (Kinematics)."""
-        from ..base.trace import LazyEquations
 
         s1, s2 = sp.symbols(f"s_{self.name}1 s_{self.name}2", real=True)
         u1, u2 = self.direction()

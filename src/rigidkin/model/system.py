@@ -12,6 +12,7 @@ from __future__ import annotations
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
+from ..base import display
 from ..base.errors import ModelError
 from ..base.units import NAMED, ONE, Dimension, to_si, unit_dimension
 from . import constraints as C
@@ -25,6 +26,7 @@ from .frames import Frame, make_reference_frame
 from .points import Point
 from .quantities import Coordinate, Parameter
 from .shapes import Shape
+from .speeds import angular_group, quasi_coordinate, quaternion_dcm, quaternion_group
 from .surfaces import Circle, Line
 from .system_constraints import ConstraintMethods
 from .system_loads import LoadMethods
@@ -249,7 +251,6 @@ class System(ConstraintMethods, LoadMethods):
     def _quaternion_frame(self, name, parent, basis, description, quaternion, speeds, initial, rates,
                           sequence, angles, angle) -> Frame:
         """A frame oriented by Euler parameters, its angular-velocity components as speeds."""
-        from .speeds import quaternion_dcm, quaternion_group
 
         where = f"frame {name}"
         if sequence is not None or angles is not None or angle is not None:
@@ -303,7 +304,6 @@ class System(ConstraintMethods, LoadMethods):
     def _quasi_coordinates(self, group) -> None:
         """For each speed w, a quasi-coordinate ``<w>_int`` with π̇ = w: the symbolic core's coordinate
         whose rate is the speed (initial rate: the speed's initial value).  It locates nothing."""
-        from .speeds import quasi_coordinate
 
         quasi = []
         for n, w, w0 in zip(group.names, group.speeds, group.initial):
@@ -321,7 +321,6 @@ class System(ConstraintMethods, LoadMethods):
         """Kane's choice for a frame oriented by angles: the components of its angular velocity (in the
         inertial frame) along its own basis become generalised speeds in place of the rates of
         ``coordinates`` (default: the frame's sequence angles).  Returns the speeds w(t)."""
-        from .speeds import angular_group
 
         fr = self._lookup("frame", self.frames, Frame, frame, "angular speeds")
         where = f"frame {fr.name}"
@@ -491,14 +490,10 @@ class System(ConstraintMethods, LoadMethods):
                           substitutions=substitutions or {}, integrate=integrate)
 
     def _repr_html_(self) -> str:
-        from ..report.jupyter import system_html
-
-        return system_html(self)
+        return display.render(self, "html")
 
     def _repr_latex_(self) -> str:
-        from ..report.jupyter import system_latex
-
-        return system_latex(self)
+        return display.render(self, "latex")
 
     def __repr__(self) -> str:
         return (f"System({self.name}: {len(self.bodies)} bodies, {len(self._coordinates)} coordinates, "

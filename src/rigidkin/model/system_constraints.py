@@ -11,6 +11,8 @@ from .checks import NONNEGATIVE, POSITIVE
 from .frames import Frame
 from .points import Point
 from .profiles import arc_for
+from .rolling3d import DiskContact
+from .ropes import build_rope
 from .surfaces import Circle, Line
 
 t = dynamicsymbols._t
@@ -75,7 +77,6 @@ class ConstraintMethods:
                      friction_name: str | None = None, description: str = ""):
         """A thin disk (wheel, coin) of ``radius`` and unit ``axis`` (fixed in ``body``) touching a plane
         at its rim, in 3D: see :mod:`rigidkin.model.rolling3d`."""
-        from .rolling3d import DiskContact
 
         self._claim(name, "constraint", "constraint")
         where = f"contact {name}"
@@ -133,7 +134,6 @@ class ConstraintMethods:
     def rope(self, name: str, path, tensions=None, description: str = ""):
         """A rope over pulleys with inertia that it does not slip on: ``path`` = end, Wrap(pulley, radius,
         "cw"|"ccw"), …, end (see :mod:`rigidkin.model.ropes`); one tension per straight segment, each ≥ 0."""
-        from .ropes import build_rope
 
         self._claim(name, "constraint", "constraint")
         con = build_rope(self, name, path, tensions, description)

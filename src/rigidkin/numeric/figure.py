@@ -12,6 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..base.outfile import OutputError, check_target, writing
+from ..base.textsafe import terminal_safe
+
 _UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s"), "other": ("", "1/s")}
 
 
@@ -37,7 +40,6 @@ def plot_result(result, path=None, title: str | None = None):
     import matplotlib.pyplot as plt
     from matplotlib.figure import Figure
 
-    from ..base.textsafe import terminal_safe
 
     fig = Figure(figsize=(10, 11), layout="constrained")
     axes = fig.subplots(4, 1, sharex=True)
@@ -141,7 +143,6 @@ def save_figure(fig, path, what: str = "the figure", **savefig_kw) -> Path:
     Text that matplotlib's mathtext cannot typeset (a title with unmatched ``$`` or ``\\frac{``) is
     drawn as plain text instead.  A path that cannot be written is an OutputError naming the reason.
     """
-    from ..base.outfile import OutputError, check_target, writing
 
     formats = figure_formats()
     p = check_target(path, what, formats)

@@ -18,6 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..base import display
+from ..base.outfile import writing
+from ..base.textsafe import safe_csv_cell
+from .figure import plot_result
 from .rhs import SimulationError
 from .state import StateLayout, rate_name
 
@@ -188,7 +192,6 @@ class SimulationResult:
 
     def write_csv(self, path) -> Path:
         """Write the histories as CSV to ``path``, chunk by chunk, whole or not at all (an OutputError says why)."""
-        from ..base.outfile import writing
 
         with writing(path, "the histories") as f:
             for chunk in self._csv_chunks():
@@ -196,7 +199,6 @@ class SimulationResult:
         return Path(path)
 
     def _csv_chunks(self, rows: int = 20_000):
-        from ..base.textsafe import safe_csv_cell
 
         cols = self.columns()
         names = list(cols)
@@ -216,14 +218,11 @@ class SimulationResult:
 
     def plot(self, path=None, title: str | None = None):
         """A figure of coordinates, rates, reactions and energy with the events marked; saved to ``path``."""
-        from .figure import plot_result
 
         return plot_result(self, path, title)
 
     def _repr_html_(self) -> str:
-        from ..report.jupyter import result_html
-
-        return result_html(self)
+        return display.render(self, "html")
 
     def __str__(self) -> str:
         lines = [f"{self.title}: simulated to t = {self.t_final:.6g} ({self.status}: {self.message})"]

@@ -18,8 +18,11 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ..base.errors import RigidkinError
+from ..derive.kinematics import linear_form
+from ..model.definitions import expand
+from ..model.speeds import STABILISATION, quaternion_groups
 from .compiled.codesafe import safe_lambdify
-from .state import StateLayout
+from .state import StateLayout, parameter_vector
 
 t = dynamicsymbols._t
 
@@ -39,7 +42,6 @@ def use_backend(backend: Callable | None) -> None:
 
 def compile_functions(args: Sequence[sp.Symbol], exprs: Sequence[sp.Expr]) -> Callable:
     """One numeric function of ``args`` returning the values of ``exprs`` (common subexpressions shared)."""
-    from ..model.definitions import expand  # derived quantities by their definitions
 
     exprs = [expand(sp.sympify(e)) for e in exprs]
     extra = set().union(*[e.free_symbols for e in exprs]) - set(args) if exprs else set()
@@ -76,7 +78,6 @@ class RegimeFunctions:
     """
 
     def __init__(self, solution, regime_index: int, layout: StateLayout, quantities: Sequence[sp.Expr] = ()):
-        from ..derive.kinematics import linear_form
 
         reg = solution.regime(regime_index)
         red = solution.setup.reduction
@@ -117,7 +118,6 @@ class RegimeFunctions:
             self._react = compile_functions(args_acc, [lay.to_plain(e) for e in (*Ar, *rhs)])
         # stage 3
         qdot, udot = [], []
-        from ..model.speeds import STABILISATION, quaternion_groups
         # Euler parameters: ė = ½Q(e)w + k(1 − |e|²)e holds |e| at 1 (the frame turns by e/|e|: no physical change)
         euler = {e: g.coordinates for g in quaternion_groups(solution.system) for e in g.coordinates}
         for q in lay.coordinates:
@@ -210,7 +210,6 @@ def make_rhs(system, mode: dict | None = None, regime: int = 0, params=None, lay
     y = (q_1 … q_n, q̇_1 … q̇_n[, extra…]); ``extra_rates`` are further integrands (expressions of the
     state, parameters and reaction symbols).  Its numeric functions come from :func:`compile_functions`.
     """
-    from .state import parameter_vector
 
     layout = layout or StateLayout.of(system)
     fns = RegimeFunctions(system.solve(mode=dict(mode or {})), regime, layout, extra_rates)

@@ -28,6 +28,7 @@ from ..model.constraints import Coulomb
 from .contacts.contact_modes import confirm, decide
 from .contacts.modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
 from .contacts.transition import transition as _transition
+from .large.tree import NotATree
 from .result import Event, Segment, SimulationResult, build_result
 from .rhs import RHS, SimulationError, compile_functions
 from .state import StateLayout, initial_values, parameter_vector
@@ -226,7 +227,6 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     if method not in METHODS:
         raise InputError(f"unknown integration method '{method}'.", where="simulate", hint=f"Use {', '.join(METHODS)}.")
     from .large.route import numeric_route, simulate_tree  # past the symbolic limit: a tree of pins goes numeric
-    from .large.tree import NotATree
 
     tree = numeric_route(system) if not phases and not mode else None
     if tree is not None:

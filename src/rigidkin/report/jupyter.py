@@ -23,6 +23,7 @@ from .document import Math, Paragraph, Table, answers_blocks, inputs_tables
 from .html import _math as _mathml
 from .html import block_html as _report_block
 from .notation import latex, latex_condition
+from .widgets import explore as _explore
 
 t = dynamicsymbols._t
 
@@ -122,6 +123,5 @@ def result_html(result, figures: bool = True) -> str:
 
 def explore(obj, **kwargs):
     """Sliders for the parameters that re-simulate and redraw (see :func:`rigidkin.report.widgets.explore`)."""
-    from .widgets import explore as _explore
 
     return _explore(obj, **kwargs)

@@ -9,6 +9,7 @@ law answers questions about instants and intervals (``laws.impulse``), not equat
 from __future__ import annotations
 
 from ...base.errors import ModelError
+from ...base.trace import Trace
 
 METHODS = ("newton-euler", "about-point", "work-energy", "lagrange", "kane")
 
@@ -40,7 +41,6 @@ def parse_method(method: str, options: dict | None = None) -> tuple[str, dict]:
 def solve_with(system, method: str, mode: dict, independent, substitutions: dict, integrate: bool = True,
                **options):
     """Derive the equations of motion of ``system`` in ``mode`` with the law named ``method``."""
-    from ...base.trace import Trace
     from ..mode import setup_mode
     from ..solution import solve_balance
     from . import newton_euler

@@ -12,6 +12,7 @@ from __future__ import annotations
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
+from ...base.algebra import time_limit
 from ...base.errors import RigidkinError
 from ...base.trace import Trace
 
@@ -30,7 +31,6 @@ def power_balance_warnings(solution) -> list[str]:
     so large that the check would take more than ``SECONDS``) gives no warning: only a definite
     disagreement does.
     """
-    from ...base.algebra import time_limit
 
     if not solution.coordinates:        # a mode at rest: no motion, no power to balance
         return []

@@ -26,9 +26,12 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ...base import algebra
+from ...base.dimensions import check_equation, symbol_dimensions
 from ...base.errors import RigidkinError
 from ...base.printing import text
-from . import NotApplicable
+from ..mode import setup_mode
+from . import NotApplicable, solve_with
+from .about_point import reaction_free
 from .compare import (  # noqa: F401  (public through here)
     MIN_SAMPLES,
     RTOL,
@@ -42,6 +45,7 @@ from .compare import (  # noqa: F401  (public through here)
     numerically_equal,
     same_equation,
 )
+from .energy import kinetic_energy, nonconservative_power, potential_energy
 
 t = dynamicsymbols._t
 
@@ -167,7 +171,6 @@ def candidate_laws(solution) -> list[str]:
 
 def _mode_args(solution):
     """(mode, independent, substitutions) that reproduce the solution's mode (independent None: default)."""
-    from ..mode import setup_mode
 
     kin, cons = solution.setup.kin, solution.system.constraints
     mode = {k: v for k, v in solution.states.items() if k in cons and v != cons[k].default_state(kin)}
@@ -179,7 +182,6 @@ def _mode_args(solution):
 
 def cross_check(solution, laws=None, expect=(), dimensions: bool = True) -> CheckReport:
     """Derive the EOM by every law in ``laws`` (default: all that may apply) and compare with ``solution``."""
-    from . import solve_with
 
     t0 = time.time()
     system = solution.system
@@ -308,7 +310,6 @@ def _row(regime, k):
 
 def _power_balance(ref) -> list[Verdict]:
     """dE/dt = Σ P_nc along the reference accelerations and reactions (a check for any number of DOF)."""
-    from .energy import kinetic_energy, nonconservative_power, potential_energy
 
     setup = ref.setup
     try:
@@ -337,7 +338,6 @@ def _power_balance(ref) -> list[Verdict]:
 
 def _reaction_free_rows(ref, other, law) -> list[Verdict]:
     """Each reaction-free 2nd-law equation about P holds with the reference accelerations."""
-    from .about_point import reaction_free
 
     out = []
     setup = other.setup
@@ -362,7 +362,6 @@ def _reaction_free_rows(ref, other, law) -> list[Verdict]:
 # the user's equation ----------------------------------------------------------------------------------
 def expectation(solution, given, label: str | None = None) -> Expectation:
     """Compare a user's equation (``sp.Eq`` or an expression ``= 0``) with the derived equations of motion."""
-    from ...base.dimensions import check_equation, symbol_dimensions
 
     setup = solution.setup
     if isinstance(given, sp.Eq):

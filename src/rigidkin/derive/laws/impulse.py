@@ -31,6 +31,7 @@ from ...base.printing import text
 from ...base.trace import Trace
 from ..kinematics import linear_form
 from ..mode import ModeSetup, setup_mode
+from . import solve_with
 
 t = dynamicsymbols._t
 
@@ -248,7 +249,6 @@ def interval(system, start: Mapping, duration=None, until=None, mode: dict | Non
     interval's length Δt (a symbol or value), or ``until`` an end condition: an expression of the state
     that reaches zero (or ``sp.Eq``), or the name of a contact, meaning that its slip speed vanishes.
     """
-    from . import solve_with
 
     if (duration is None) == (until is None):
         raise ModelError("give either the duration of the interval or the end condition (until=...).",
@@ -356,7 +356,6 @@ def _end_condition(setup: ModeSetup, until):
 
 def conserved_momenta(system, mode: dict | None = None, substitutions: dict | None = None) -> list[Momentum]:
     """The momentum components m v̄·e and H̄·e whose force or moment vanishes in ``mode`` (constant in time)."""
-    from . import solve_with
 
     setup = setup_mode(system, mode, None, substitutions)
     kin = setup.kin

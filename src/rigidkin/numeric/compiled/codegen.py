@@ -30,6 +30,8 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ...base.errors import RigidkinError
+from ...base.trace import Trace
+from ...derive.laws import newton_euler
 from ..state import StateLayout, parameter_vector
 from .cache import _LOADED, build, cache_dir, compiler  # noqa: F401  (cache_dir, _LOADED: public through here)
 from .codesafe import safe_lambdify
@@ -216,9 +218,7 @@ def _mass_matrix(system, setup, mode, regime) -> Kernel:
 
 
 def _implicit(system, setup, regime) -> Kernel:
-    from ...base.trace import Trace
     from ...derive.kinematics import linear_form
-    from ...derive.laws import newton_euler
     from ...derive.solution import _determinacy
 
     red = setup.reduction

@@ -26,6 +26,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ...base.errors import ModelError, RigidkinError
 from ...base.printing import text as show
+from ...derive.laws.energy import kinetic_energy, nonconservative_power, potential_energy
 from ...model.constraints import ROLLING, SMOOTH, Contact, Coulomb
 from ..rhs import RegimeFunctions, compile_functions
 from ..state import StateLayout
@@ -260,7 +261,6 @@ class Hybrid:
             return zero_r.get(sym, sym)
 
         # energy and the power of non-conservative loads and reactions
-        from ...derive.laws.energy import kinetic_energy, nonconservative_power, potential_energy
 
         T, U = kinetic_energy(setup), potential_energy(setup)
         powers = nonconservative_power(setup)

@@ -41,6 +41,7 @@ from ...base import algebra, vectorops
 from ...base.errors import ConstraintError, ModelError, RigidkinError
 from ...derive.kinematics import Kinematics, linear_form
 from ...model.speeds import STABILISATION, speeds_of
+from .linearise import linearise, state_matrix
 from .projected_assembly import _full_rates, _partials, _project, _vec
 
 t = dynamicsymbols._t
@@ -419,7 +420,6 @@ class ProjectedModel:
     def state_matrix(self, q, ui, coordinates: Sequence, speeds: Sequence, values=None, dps: int = 40,
                      step: float = 1e-15) -> np.ndarray:
         """A of d/dt (δq, δu) = A (δq, δu) about (q, u_i): see :func:`rigidkin.numeric.large.linearise.state_matrix`."""
-        from .linearise import state_matrix
 
         return state_matrix(self, q, ui, coordinates, speeds, values, dps, step)
 
@@ -509,6 +509,5 @@ class ProjectedModel:
     # linearisation --------------------------------------------------------------------------------
     def linearise(self, q, ui, perturb: Sequence, values=None, dps: int = 40, step: float = 1e-15):
         """M δq̈ + C δq̇ + K δq = 0 about (q, u_i): see :func:`rigidkin.numeric.large.linearise.linearise`."""
-        from .linearise import linearise
 
         return linearise(self, q, ui, perturb, values, dps, step)

@@ -16,6 +16,7 @@ import numpy as np
 
 from ...base.errors import RigidkinError
 from ..compiled import batch
+from ..compiled.batch import INTEGRATOR_C, INTEGRATOR_CDEF
 from ..compiled.codegen import _CDEF, Kernel, _build, c_available, c_source
 
 
@@ -57,7 +58,6 @@ def integrate_dask(kernel: Kernel, y0: np.ndarray, params: np.ndarray, t_span, e
                             hint="Install gcc and cffi, or run the sweep locally (it falls back to numpy).")
     from distributed import as_completed
 
-    from ..compiled.batch import INTEGRATOR_C, INTEGRATOR_CDEF
 
     code = (c_source(kernel) + INTEGRATOR_C, _CDEF + INTEGRATOR_CDEF)
     _build(*code)                      # compile errors surface here, not on a worker

@@ -21,10 +21,15 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ...base.errors import InputError, RigidkinError
+from ...derive.mode import setup_mode
 from ..compiled import batch
+from ..compiled.batch import INTEGRATOR_C, INTEGRATOR_CDEF
 from ..compiled.codegen import CompiledModel, Kernel, compile_kernel, kernel
+from ..compiled.csource import _CDEF, c_source
 from ..state import StateLayout, parameter_vector, quantity
+from .exprtree import NotEncodable, encode
 from .sweep_plan import _vector_eval, axis, axis_length, check_runs, complete, declared_state, runs_grid  # noqa: F401  (public here)
+from .sweep_record import make
 from .sweep_result import SweepResult, status_text  # noqa: F401  (public through here)
 
 t = dynamicsymbols._t
@@ -43,7 +48,6 @@ class StopAt:
 # ---------------------------------------------------------------------------------------------------
 def event_aliases(system, mode) -> dict[str, str]:
     """The names simulate gives contacts' events (``contact A opens``) → the reaction that reaches zero (``N_A``)."""
-    from ...derive.mode import setup_mode
 
     return {f"contact {row.constraint} opens": str(r) for r, row in setup_mode(system, mode).unilateral}
 
@@ -71,7 +75,6 @@ def stop_event(layout: StateLayout, k: Kernel, spec: str, terminal: bool = True,
 
 
 def _mode_events(system, mode) -> list[str]:
-    from ...derive.mode import setup_mode
 
     return [str(r) for r, _ in setup_mode(system, mode).unilateral]
 
@@ -121,8 +124,6 @@ def relations(system, mode, layout: StateLayout) -> tuple[list, list]:
     """The constraints of the mode as (state slot, expression) pairs: the dependent coordinates, then the
     dependent rates, each an expression of the layout's arguments (t, q, u, p) — a tree of
     :mod:`rigidkin.numeric.sweeps.exprtree` where it can be one, else the sympy expression."""
-    from ...derive.mode import setup_mode
-    from .exprtree import NotEncodable, encode
 
     red = setup_mode(system, dict(mode or {})).reduction
     index = {a: i for i, a in enumerate(layout.arguments())}
@@ -264,9 +265,6 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
 
 def _record(system, mode, layout: StateLayout, k: Kernel, events) -> dict | None:
     """The numeric record of this sweep's model (see :mod:`rigidkin.numeric.sweeps.sweep_record`)."""
-    from ..compiled.batch import INTEGRATOR_C, INTEGRATOR_CDEF
-    from ..compiled.csource import _CDEF, c_source
-    from .sweep_record import make
 
     return make(system, layout, relations(system, mode, layout), events, c_source(k) + INTEGRATOR_C,
                 _CDEF + INTEGRATOR_CDEF)

@@ -12,6 +12,8 @@ import math
 import numpy as np
 
 from ...base.errors import InputError
+from ...base.limits import check_memory, sweep_bytes
+from .exprtree import evaluate
 
 
 def axis(spec) -> np.ndarray:
@@ -44,7 +46,6 @@ def check_runs(lengths: list[int], n: int, n_p: int, events: int = 4, grid: bool
     Every run keeps its parameters, inputs, initial and final states, and each event's time and
     state (``events``: how many events, estimated); see :data:`rigidkin.base.limits.MEMORY_LIMIT`.
     """
-    from ...base.limits import check_memory, sweep_bytes
 
     runs = (math.prod(lengths) if grid else max(lengths)) if lengths else 1
     per_run = 3 * n_p + 2 * len(lengths) + 6 * 2 * n + 2 * events * (2 * n + 1) + 8
@@ -97,7 +98,6 @@ def runs_grid(vary, base_p, y_base, parameters, labels, given: set, grid: bool =
 def complete(Y: np.ndarray, P: np.ndarray, rel: tuple[list, list], given: set, args=None) -> None:
     """Each run's dependent coordinates, then rates, from the constraints (``relations``), in place; the slots
     in ``given`` keep their values."""
-    from .exprtree import evaluate
 
     runs = len(Y)
     cols = [np.zeros(runs), *Y.T, *P.T]          # views: each slot completed is seen by the next

@@ -22,7 +22,11 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from ..compiled import batch
+from ..compiled.cache import CacheError, build
 from . import exprtree
+from .sweep_plan import axis_length, check_runs, complete, declared_state, runs_grid
+from .sweep_result import SweepResult
 
 VERSION = 1
 SUFFIX = ".rec"
@@ -39,7 +43,6 @@ def make(system, layout, rel: tuple[list, list], events, source: str, cdef: str)
     """The record of a sweep's model (None where a constraint could not be written as a tree)."""
     if any(not isinstance(expr, list) for group in rel for _, expr in group):
         return None
-    from .sweep_plan import declared_state
 
     n = layout.n
     y_base = [float(v) for v in declared_state(system, n)]
@@ -88,7 +91,6 @@ def plain_number(text) -> float | None:
 
 def plan(rec: dict, vary: dict, params: dict, initial: dict):
     """(inputs, P, Y) as :func:`rigidkin.numeric.sweeps.sweep.plan` makes them, or None (take the full route)."""
-    from .sweep_plan import axis_length, check_runs, complete, runs_grid
 
     labels, names = rec["labels"], rec["parameters"]
     base_p = list(rec["base_p"])
@@ -138,9 +140,6 @@ def run(rec: dict, vary: dict, params: dict, initial: dict, t_end: float, rtol: 
     if planned is None:
         return None
     inputs, P, Y = planned
-    from ..compiled import batch
-    from ..compiled.cache import CacheError, build
-    from .sweep_result import SweepResult
 
     try:
         ffi, lib = build(rec["source"], rec["cdef"])

@@ -14,6 +14,8 @@ import numpy as np
 
 from ...base.errors import InputError
 from ..compiled import batch
+from ..figure import save_figure
+from .tables import write_csv, write_parquet, write_table
 
 
 @dataclass
@@ -76,19 +78,16 @@ class SweepResult:
     def write(self, path) -> Path:
         """Write the table to ``path``: Parquet for ``.parquet``/``.pq`` (needs pyarrow), CSV otherwise; whole or
         not at all (OutputError: why not).  See :mod:`rigidkin.numeric.sweeps.tables`."""
-        from .tables import write_table
 
         return write_table(self.columns(), path, "the sweep table", self.metadata())
 
     def to_csv(self, path) -> Path:
         """Write the table as CSV (numbers as ``repr`` writes them, missing values empty, names neutralised)."""
-        from .tables import write_csv
 
         return write_csv(self.columns(), path, "the sweep table")
 
     def to_parquet(self, path) -> Path:
         """Write the table as Parquet (needs pyarrow; missing values as nulls)."""
-        from .tables import write_parquet
 
         return write_parquet(self.columns(), path, "the sweep table", self.metadata())
 
@@ -96,7 +95,6 @@ class SweepResult:
         """A figure of one table column against another (default: the first event's time against the first input)."""
         from matplotlib.figure import Figure
 
-        from ..figure import save_figure
 
         cols = self.columns()
         x = x or (next(iter(self.inputs)) if self.inputs else "run")

@@ -24,6 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ...base.errors import RigidkinError
+from ...base.outfile import OutputError, writing
+from ...base.textsafe import safe_csv_cell
+
 #: File extensions written as Parquet; any other is CSV.
 PARQUET_SUFFIXES = (".parquet", ".pq")
 #: Rows formatted and joined at a time (bounds the memory of the cells).
@@ -40,7 +44,6 @@ def table_format(path) -> str:
 def require_parquet(path, what: str = "the table"):
     """The ``pyarrow`` module (with ``pyarrow.parquet`` loaded), or an OutputError (exit status 2) saying
     that Parquet needs it and how to get it."""
-    from ...base.outfile import OutputError
 
     try:
         import pyarrow
@@ -70,7 +73,6 @@ def _quoted(text: str) -> str:
 
 
 def _text_cell(value) -> str:
-    from ...base.textsafe import safe_csv_cell
 
     if isinstance(value, (float, np.floating)):
         return "" if np.isnan(value) else repr(float(value))
@@ -143,7 +145,6 @@ def _cells(a: np.ndarray, floats: _FloatCells) -> list[str]:
 
 
 def _columns(columns: Mapping[str, np.ndarray]) -> tuple[list[str], list[np.ndarray], int]:
-    from ...base.errors import RigidkinError
 
     names = [str(n) for n in columns]
     arrays = [np.asarray(v) for v in columns.values()]
@@ -169,7 +170,6 @@ def csv_text_blocks(columns: Mapping[str, np.ndarray], block_rows: int = BLOCK_R
 def write_csv(columns: Mapping[str, np.ndarray], path, what: str = "the table",
               block_rows: int = BLOCK_ROWS) -> Path:
     """Write the table as CSV to ``path``, whole or not at all (OutputError: why not)."""
-    from ...base.outfile import writing
 
     with writing(path, what) as fh:
         for text in csv_text_blocks(columns, block_rows):
@@ -206,7 +206,6 @@ def arrow_table(columns: Mapping[str, np.ndarray], metadata: Mapping[str, str] |
 def write_parquet(columns: Mapping[str, np.ndarray], path, what: str = "the table",
                   metadata: Mapping[str, str] | None = None) -> Path:
     """Write the table as Parquet to ``path``, whole or not at all; needs pyarrow (:func:`require_parquet`)."""
-    from ...base.outfile import writing
 
     require_parquet(path, what)
     import pyarrow.parquet as pq
