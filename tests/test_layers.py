@@ -153,7 +153,8 @@ def _heavy_closure() -> dict[str, frozenset[str]]:
 
 
 HEAVY_AT_LOAD = _heavy_closure()
-DOOR_EDGES = {(a, b) for a, b, _ in DOORS}
+#: a door's import runs the packages above the imported module too (importing a.b.c runs a and a.b)
+DOOR_EDGES = {(a, ".".join(b.split(".")[:i])) for a, b, _ in DOORS for i in range(2, b.count(".") + 2)}
 
 
 def layer(module: str) -> int:
