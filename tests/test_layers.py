@@ -86,6 +86,11 @@ def _known(name: str) -> str:
     return name
 
 
+class Import(collections.namedtuple("Import", "target line inner leaf")):
+    """One module an import statement runs: ``target`` (the imported module, or a package above it that
+    runs first), ``leaf`` (the module the statement names)."""
+
+
 def _imports(module: str):
     """(imported module, line, inside a function) for every rigidkin import of ``module``; the heavy
     libraries it imports at load time go to :data:`LOADS_HEAVY`."""
@@ -113,7 +118,8 @@ def _imports(module: str):
                     target = _known(name).split(".")
                     for i in range(2, len(target) + 1):
                         if ".".join(target[:i]) != module and not module.startswith(".".join(target[:i]) + "."):
-                            found.append((".".join(target[:i]), child.lineno, inner or typing_only))
+                            found.append(Import(".".join(target[:i]), child.lineno, inner or typing_only,
+                                                _known(name)))
             visit(child, deeper, for_types)
 
     visit(tree, False, False)
@@ -141,7 +147,7 @@ def _heavy_closure() -> dict[str, frozenset[str]]:
             parent = ".".join(parts[:i])
             if parent in MODULES:
                 acc |= visit(parent, seen)
-        for t, _, inner in GRAPH[m]:
+        for t, _, inner, _ in GRAPH[m]:
             if not inner:
                 acc |= visit(t, seen)
         out[m] = frozenset(acc)
@@ -178,20 +184,20 @@ def test_every_module_has_a_layer():
 def test_doors_are_real_imports():
     """A listed door is an import that exists (a stale list hides nothing)."""
     for a, b, _ in DOORS:
-        assert any(t == b for t, _, _ in GRAPH.get(a, [])), f"door {a} -> {b} is not imported"
+        assert any(i.target == b for i in GRAPH.get(a, [])), f"door {a} -> {b} is not imported"
 
 
 def test_no_upward_import():
     upward = [f"{m}:{line} imports {t} ({LAYERS[layer(m)][0]} -> {LAYERS[layer(t)][0]})"
-              for m, edges in GRAPH.items() for t, line, _ in edges
+              for m, edges in GRAPH.items() for t, line, _, _ in edges
               if layer(t) > layer(m) and (m, t) not in DOOR_EDGES]
     assert not upward, "imports up a layer:\n" + "\n".join(sorted(upward))
 
 
 def test_imports_inside_functions_only_where_allowed():
-    inner = [f"{m}:{line} imports {t} inside a function (it loads nothing heavy that {m} does not)"
-             for m, edges in GRAPH.items() for t, line, in_function in edges
-             if in_function and not _inner_allowed(m, t)]
+    inner = sorted({f"{m}:{i.line} imports {i.leaf} inside a function (it loads nothing heavy that {m} does not)"
+                    for m, edges in GRAPH.items() for i in edges
+                    if i.inner and not _inner_allowed(m, i.leaf)})
     assert not inner, "imports inside functions:\n" + "\n".join(sorted(inner))
 
 
@@ -229,7 +235,7 @@ def _cycles(edges: dict[str, set[str]]) -> list[list[str]]:
 def test_no_import_circle():
     edges = collections.defaultdict(set)
     for m, found in GRAPH.items():
-        edges[m] |= {t for t, _, _ in found if (m, t) not in DOOR_EDGES}
+        edges[m] |= {i.target for i in found if (m, i.target) not in DOOR_EDGES}
     circles = _cycles(edges)
     assert not circles, "import circles:\n" + "\n".join(" ⇄ ".join(c) for c in circles)
 
