@@ -20,6 +20,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..base import algebra
 from ..base.errors import RigidkinError
+from ..derive.laws.energy import kinetic_energy, potential_energy
 from .states import at_state, full_state
 
 t = dynamicsymbols._t
@@ -155,8 +156,6 @@ def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
     Each candidate is kept only if its rate along the motion (accelerations substituted) vanishes
     identically, so a dissipative system simply has no energy integral in the list.
     """
-    from ..derive.laws.energy import kinetic_energy, potential_energy
-
     regime = single_regime(solution)
     setup = solution.setup
     state = full_state(solution.system, dict(start or {}))

@@ -40,6 +40,7 @@ from ..base.printing import latex, text
 from ..base.trace import LazyEquations, Trace
 from ..base.trigforms import compact
 from ..base.vectorops import dot, in_frame
+from ..model.profiles import arc_margins
 from ..model.speeds import quaternion_groups
 from .determinacy import _determinacy
 from .evaluation import reactions_at
@@ -475,8 +476,7 @@ def _validity(setup, react):
                                    f"friction at {c.name} within {word} (no slip)", "validity"))
             valid.append(Condition(setup.kin.simplify_expr(mu * N + F), ">=",
                                    f"friction at {c.name} within {word} (no slip)", "validity"))
-    from ..model.profiles import arc_margins  # a profile that is an arc: the contact point stays on it
-
+    # a profile that is an arc: the contact point stays on it
     valid.extend(Condition(m, ">=", label, "validity") for m, label in arc_margins(setup))
     for c in setup.system.constraints.values():          # a constraint's own conditions (a rope's grip)
         extra = getattr(c, "validity", None)

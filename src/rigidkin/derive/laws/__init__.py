@@ -4,38 +4,14 @@ Methods: ``newton-euler`` (1st law and 2nd law about each mass centre), ``about-
 2nd law about the point or constraint P), ``work-energy`` (dE/dt = ΣP_nc, one degree of freedom),
 ``lagrange`` and ``kane`` (sympy.physics.mechanics built from the same model).  The impulse–momentum
 law answers questions about instants and intervals (``laws.impulse``), not equations of motion.
+The names of the laws, ``parse_method`` and ``NotApplicable`` live in ``laws.methods``.
 """
 
 from __future__ import annotations
 
 from ...base.errors import ModelError
 from ...base.trace import Trace
-
-METHODS = ("newton-euler", "about-point", "work-energy", "lagrange", "kane")
-
-
-class NotApplicable(ModelError):
-    """A law does not apply to this system or mode (the message says why); other laws may."""
-
-
-def parse_method(method: str, options: dict | None = None) -> tuple[str, dict]:
-    """``"about-point:O"`` → ("about-point", {"point": "O"}); other names pass through."""
-    options = dict(options or {})
-    name = str(method).strip()
-    if ":" in name:
-        name, _, arg = name.partition(":")
-        name = name.strip()
-        if name != "about-point":
-            raise ModelError(f"the method '{name}' takes no argument (':{arg}').", where="method",
-                             hint=f"Use one of: {', '.join(METHODS)} (about-point:POINT).")
-        options["point"] = arg.strip()
-    if name not in METHODS:
-        raise ModelError(f"unknown method '{method}'.", where="method",
-                         hint=f"Use one of: {', '.join(METHODS)} (about-point takes a point: about-point:O).")
-    if name == "about-point" and not options.get("point"):
-        raise ModelError("the about-point law needs the point to take moments about.", where="method",
-                         hint="Write about-point:NAME with a point, pin, collar or contact name.")
-    return name, options
+from .methods import METHODS, NotApplicable, parse_method  # noqa: F401 (the laws' vocabulary)
 
 
 def solve_with(system, method: str, mode: dict, independent, substitutions: dict, integrate: bool = True,

@@ -26,11 +26,11 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ...base import algebra
-from ...base.dimensions import check_equation, symbol_dimensions
+from ...base.dimensions import check_equation, check_solution, symbol_dimensions
 from ...base.errors import RigidkinError
 from ...base.printing import text
 from ..mode import setup_mode
-from . import NotApplicable, solve_with
+from . import solve_with
 from .about_point import reaction_free
 from .compare import (  # noqa: F401  (public through here)
     MIN_SAMPLES,
@@ -46,6 +46,7 @@ from .compare import (  # noqa: F401  (public through here)
     same_equation,
 )
 from .energy import kinetic_energy, nonconservative_power, potential_energy
+from .methods import NotApplicable
 
 t = dynamicsymbols._t
 
@@ -204,8 +205,6 @@ def cross_check(solution, laws=None, expect=(), dimensions: bool = True) -> Chec
             verdicts.extend(_reaction_free_rows(solution, other, law))
     dims = ()
     if dimensions:
-        from ...base.dimensions import check_solution
-
         dims = tuple(check_solution(solution))
     exps = tuple(expectation(solution, e) for e in expect)
     report = CheckReport(system.name, solution.method, tuple(verdicts), dims, exps, time.time() - t0)

@@ -25,7 +25,7 @@ from ...base import algebra
 from ...base.errors import RigidkinError
 from ...base.printing import text
 from ..mode import ModeSetup, setup_mode
-from . import NotApplicable
+from .methods import NotApplicable
 from .newton_euler import BalanceEquation
 
 t = dynamicsymbols._t

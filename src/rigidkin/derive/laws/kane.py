@@ -16,8 +16,9 @@ from sympy.physics.vector import dynamicsymbols
 
 from ...base.printing import text
 from ..mode import ModeSetup
-from . import NotApplicable
+from .lagrange import split
 from .mechanics_model import build
+from .methods import NotApplicable
 from .newton_euler import BalanceEquation
 
 t = dynamicsymbols._t
@@ -90,8 +91,6 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     out = []
     if not u_dep:
         # no dependent speed: Kane's equations themselves, M(q) q̈ = f(q, q̇), one per speed
-        from .lagrange import split
-
         udot = {u.diff(t): q.diff(t, 2) for q, u in zip(qs, us)}
         accels = [q.diff(t, 2) for q in qs]
         for q, e in zip(qs, fr + frstar):

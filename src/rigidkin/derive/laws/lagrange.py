@@ -17,6 +17,7 @@ from sympy.physics.vector import dynamicsymbols
 from ...base.printing import text
 from ..mode import ModeSetup
 from .mechanics_model import build
+from .methods import NotApplicable
 from .newton_euler import BalanceEquation
 
 t = dynamicsymbols._t
@@ -27,8 +28,6 @@ METHOD = "lagrange"
 def equations(setup: ModeSetup) -> list[BalanceEquation]:
     """q̈_i = f_i for each independent coordinate, from LagrangesMethod with multipliers."""
     if getattr(setup.system, "speed_groups", None):
-        from . import NotApplicable
-
         raise NotApplicable("Lagrange's equations hold for coordinates, and this system's speeds are angular-velocity "
                             "components (quasi-coordinates, model/speeds.py), which are no coordinate's rate.",
                             where=setup.system.name, hint="Newton–Euler and the laws about a point apply.")

@@ -17,7 +17,7 @@ from sympy.physics.mechanics import Point, RigidBody
 from sympy.physics.vector import Vector, dynamicsymbols
 
 from ..mode import ModeSetup
-from . import NotApplicable
+from .methods import NotApplicable
 
 t = dynamicsymbols._t
 
