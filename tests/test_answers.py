@@ -125,7 +125,7 @@ def test_slip_to_roll_never_rolls_when_mu_small():
     s = build("slip-to-roll")
     info = s.parameter_info["mu"]
     s._parameters["mu"] = type(info)(**{**info.__dict__, "value": 0.1})   # tan(30°)/3 ≈ 0.192
-    s._cache.clear()
+    s._derived = None                  # what was derived with the old µ is void
     res = run_phases(s, _slip_to_roll_phases(s))
     assert len(res) == 2 and not res[1].happens
     assert "never reached" in res[1].notes[0] and "µ > tan(β)/3" in res[1].notes[0]

@@ -18,6 +18,7 @@ import pytest
 
 from rigidkin.cli import main
 from rigidkin.commands import common
+from rigidkin.derive.derivation import derivation_of
 from rigidkin.io import derivation_cache as dc
 
 
@@ -105,7 +106,8 @@ def test_simulate_and_check_derive_nothing_again(cache, monkeypatch, capsys):
     assert loads == ["ladder"]
     # what check derived (the Lagrange equations) is in the entry now
     entry = dc.read(cache / "derivations", dc.key_of("ladder"))
-    assert any(isinstance(k, tuple) and k[:2] == ("solution", "lagrange") for k in entry["system"]._cache)
+    assert any(isinstance(k, tuple) and k[:2] == ("solution", "lagrange")
+               for k in derivation_of(entry["system"]).inventory())
 
 
 def _tamper_then_solve(cache, monkeypatch, capsys, change) -> list:

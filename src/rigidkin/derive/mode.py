@@ -18,6 +18,7 @@ from ..base.printing import text
 from ..base.trace import LazyEquations, Trace
 from ..model.loads import Application, SignChoice
 from ..model.speeds import is_quasi
+from .derivation import derivation_of
 from .kinematics import Kinematics, Reduction, reduce_constraints
 
 
@@ -61,7 +62,7 @@ def mode_key(system, mode: dict, independent, substitutions, integrate: bool = T
 
 def setup_mode(system, mode: dict | None = None, independent=None, substitutions: dict | None = None,
                integrate: bool = True) -> ModeSetup:
-    """Build (and cache on the system) the ModeSetup for ``mode``.
+    """Build (and keep in the system's derivation) the ModeSetup for ``mode``.
 
     With ``integrate=False`` the dependent coordinates whose relation comes from integrating a rate
     relation (φ = (R − r)θ/r, with a constant fixed by the initial configuration) stay coordinates of
@@ -69,18 +70,14 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
     """
     mode = dict(mode or {})
     substitutions = dict(substitutions or {})
-    key = ("mode",) + mode_key(system, mode, independent, substitutions, integrate)
-    if key in system._cache:
-        return system._cache[key]
+    key = mode_key(system, mode, independent, substitutions, integrate)
+    if (kept := derivation_of(system).setup(key)) is not None:
+        return kept
     for name in mode:
         if name not in system.constraints:
             raise ModelError(f"the mode names '{name}', which is not a constraint of the system.",
                              where="mode", hint=f"Constraints: {', '.join(system.constraints) or 'none'}.")
-    kin = system._cache.get("kin") or Kinematics(system)
-    if "kin" not in system._cache:
-        _check_model(system, kin)
-        _check_fixed_points(system, kin)
-    system._cache["kin"] = kin
+    kin = derivation_of(system).kinematics(checks=lambda k: (_check_model(system, k), _check_fixed_points(system, k)))
     trace = Trace(law="kinematics")
     _trace_frames(system, kin, trace)
     states, rows, loads = {}, [], list(system.loads.values())
@@ -118,7 +115,7 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
     for ld in loads:                    # a load that states kinematics of its own (3D slip direction)
         if hasattr(ld, "trace_kinematics"):
             ld.trace_kinematics(setup)
-    system._cache[key] = setup
+    derivation_of(system).keep_setup(key, setup)
     return setup
 
 

@@ -40,8 +40,7 @@ MAGIC = b"rigidkin-derivation-2\n"
 SECRET_NAME = "secret.key"
 MAX_ENTRY = 256 * 1024 * 1024            # bytes: a larger derivation is not kept
 MAX_ENTRIES = 200                         # the oldest beyond these are removed when one is written
-_KEPT = ("solution", "mode")
-_CACHED = type(functools.cache(len))              # kinds of System._cache entries kept (and "kin")
+_CACHED = type(functools.cache(len))              # a memoized function (functools.cache) in what is kept
 
 
 def disabled_by_env() -> bool:
@@ -209,12 +208,10 @@ def _remove(path: Path) -> None:
         path.unlink()
 
 
-def _keep(key) -> bool:
-    return key == "kin" or (isinstance(key, tuple) and bool(key) and key[0] in _KEPT)
-
-
 def kept_keys(system) -> frozenset:
-    return frozenset(repr(k) for k in system._cache if _keep(k))
+    """What the system's derivation holds that is kept (:meth:`rigidkin.derive.derivation.Derivation.inventory`)."""
+    derived = getattr(system, "_derived", None)
+    return frozenset() if derived is None else frozenset(repr(k) for k in derived.inventory())
 
 
 def dumps(entry: dict) -> bytes | None:
@@ -236,7 +233,9 @@ def dumps(entry: dict) -> bytes | None:
         def reducer_override(self, obj):
             if obj is system:
                 state = dict(obj.__dict__)
-                state["_cache"] = {k: v for k, v in obj._cache.items() if _keep(k)}
+                derived = state.get("_derived")     # its symbolic stages (rigidkin.derive.derivation.Derivation)
+                state["_derived"] = None if derived is None else derived.symbolic()
+                state["_kinematic_equations"] = None
                 return copyreg.__newobj__, (type(obj),), state
             if type(obj) is ProblemSpec and obj.data is not None:     # the schema's tree: pydantic, not needed
                 state = dict(obj.__dict__)

@@ -232,11 +232,10 @@ def require_rate_speeds(system, what: str) -> None:
 
 
 def speeds_of(system) -> KinematicEquations:
-    """The kinematic equations of ``system`` (cached on it)."""
-    cache = getattr(system, "_cache", None)
-    if cache is not None and "speeds" in cache:
-        return cache["speeds"]
-    k = KinematicEquations(system)
-    if cache is not None:
-        cache["speeds"] = k
+    """The kinematic equations of ``system`` (kept on it until its description changes)."""
+    k = getattr(system, "_kinematic_equations", None)
+    if k is None:
+        k = KinematicEquations(system)
+        if hasattr(system, "_kinematic_equations"):
+            system._kinematic_equations = k
     return k

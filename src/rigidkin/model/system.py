@@ -75,7 +75,7 @@ class System(ConstraintMethods, LoadMethods):
         self.loads: dict[str, L.Load] = {}
         self.definitions: dict[str, Definition] = {}     # derived quantities (System.define)
         self._names: dict[str, str] = {}
-        self._cache: dict = {}
+        self._derived = self._kinematic_equations = None     # what was derived from this description
         self.speed_groups: dict = {}                     # frame name → SpeedGroup (model/speeds.py)
         basis = ("Ex", "Ey", "Ez")
         ref = make_reference_frame("F", basis, _latex_basis(basis))
@@ -95,7 +95,7 @@ class System(ConstraintMethods, LoadMethods):
             raise ModelError(f"the name '{name}'{of} is already used by {self._names[key]}.",
                              where=owner or f"{kind} {name}", hint="Give each object a name of its own.")
         self._names[key] = owner or f"{kind} {name}"
-        self._cache.clear()
+        self._derived = self._kinematic_equations = None     # the description changed: void what was derived
 
     # parameters and coordinates ---------------------------------------------------------------
     def parameter(self, name: str, unit: str | None = None, description: str = "", value=None,
@@ -298,7 +298,7 @@ class System(ConstraintMethods, LoadMethods):
         group = holder["group"]
         self._quasi_coordinates(group)
         self.speed_groups[name] = group
-        self._cache.clear()
+        self._derived = self._kinematic_equations = None     # the description changed: void what was derived
         return fr
 
     def _quasi_coordinates(self, group) -> None:
@@ -342,7 +342,7 @@ class System(ConstraintMethods, LoadMethods):
         fr.speeds = group.speeds
         self._quasi_coordinates(group)
         self.speed_groups[fr.name] = group
-        self._cache.clear()
+        self._derived = self._kinematic_equations = None     # the description changed: void what was derived
         return group.speeds
 
     def _number(self, v, where) -> float:

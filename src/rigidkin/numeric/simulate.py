@@ -24,6 +24,7 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ..base.errors import InputError
+from ..derive.derivation import derivation_of
 from ..model.constraints import Coulomb
 from .contacts.contact_modes import confirm, decide
 from .contacts.modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
@@ -55,11 +56,7 @@ class Phase:
 
 def hybrid_of(system) -> Hybrid:
     """The system's Hybrid (numeric functions of its modes), kept with the system's derivations."""
-    h = system._cache.get("numeric-hybrid")
-    if h is None:
-        h = Hybrid(system)
-        system._cache["numeric-hybrid"] = h
-    return h
+    return derivation_of(system).hybrid(lambda: Hybrid(system))
 
 
 def _span(t_span) -> tuple[float, float]:

@@ -10,6 +10,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..base.printing import euler_norms, text
 from ..base.textsafe import terminal_safe
+from ..derive.derivation import derivation_of
 
 t = dynamicsymbols._t
 _INDENT = "    "
@@ -27,10 +28,7 @@ def _along(vector) -> str:
 def _directions(system, c) -> dict:
     """Reaction symbol → its direction vector for contacts and collars (planar problems)."""
     try:
-        from ..derive.kinematics import Kinematics
-
-        kin = system._cache.get("kin") or Kinematics(system)
-        system._cache["kin"] = kin
+        kin = derivation_of(system).kinematics()
         if not kin.planar:
             return {}
         if c.kind == "contact" and hasattr(c, "tangents"):

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from ...base.errors import ModelError
 from ...base.trace import Trace
+from ..derivation import derivation_of
 from .methods import METHODS, NotApplicable, parse_method  # noqa: F401 (the laws' vocabulary)
 
 
@@ -22,11 +23,11 @@ def solve_with(system, method: str, mode: dict, independent, substitutions: dict
     from . import newton_euler
 
     name, options = parse_method(method, options)
-    key = ("solution", name, tuple(sorted(options.items(), key=str)), tuple(sorted(mode.items())),
+    key = (name, tuple(sorted(options.items(), key=str)), tuple(sorted(mode.items())),
            None if independent is None else tuple(map(str, independent)),
            tuple(sorted((str(k), str(v)) for k, v in substitutions.items())), integrate)
-    if key in system._cache:
-        return system._cache[key]
+    if (kept := derivation_of(system).solution(key)) is not None:
+        return kept
     setup = setup_mode(system, mode, independent, substitutions, integrate)
     label = name if name != "about-point" else f"about-point:{options['point']}"
     trace = Trace(law=label)
@@ -51,7 +52,7 @@ def solve_with(system, method: str, mode: dict, independent, substitutions: dict
             sol = solution_from_rows(setup, eqs, name, trace, reference)
     finally:
         setup.trace = setup_trace
-    system._cache[key] = sol
+    derivation_of(system).keep_solution(key, sol)
     return sol
 
 

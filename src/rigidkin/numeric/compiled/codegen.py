@@ -31,6 +31,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ...base.errors import RigidkinError
 from ...base.trace import Trace
+from ...derive.derivation import derivation_of
 from ...derive.laws import newton_euler
 from ..state import StateLayout, parameter_vector
 from .cache import _LOADED, build, cache_dir, compiler  # noqa: F401  (cache_dir, _LOADED: public through here)
@@ -135,9 +136,9 @@ def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "au
     if form not in FORMS:
         raise CodegenError(f"unknown form '{form}'.", hint=f"Use one of: {', '.join(FORMS)}.")
     mode = dict(mode or {})
-    key = ("codegen-kernel", tuple(sorted(mode.items())), regime, form)
-    if key in system._cache:
-        return system._cache[key]
+    key = (tuple(sorted(mode.items())), regime, form)
+    if (kept := derivation_of(system).kernel(key)) is not None:
+        return kept
     from ...derive.mode import setup_mode
 
     setup = setup_mode(system, mode)
@@ -151,8 +152,7 @@ def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "au
         k = _mass_matrix(system, setup, mode, regime)
     else:
         k = _implicit(system, setup, regime)
-    system._cache[key] = k
-    return k
+    return derivation_of(system).keep_kernel(key, k)
 
 
 def _rates(layout: StateLayout, red, accel_symbols: Mapping) -> list:

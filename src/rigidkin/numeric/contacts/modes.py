@@ -26,6 +26,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ...base.errors import ModelError, RigidkinError
 from ...base.printing import text as show
+from ...derive.derivation import derivation_of
 from ...derive.laws.energy import kinetic_energy, nonconservative_power, potential_energy
 from ...model.constraints import ROLLING, SMOOTH, Contact, Coulomb
 from ..rhs import RegimeFunctions, compile_functions
@@ -231,10 +232,7 @@ class Hybrid:
     @property
     def kin(self):
         if self._kin is None:
-            from ...derive.kinematics import Kinematics
-
-            self._kin = self.system._cache.get("kin") or Kinematics(self.system)
-            self.system._cache["kin"] = self._kin
+            self._kin = derivation_of(self.system).kinematics()
         return self._kin
 
     def default_mode(self) -> dict:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from ...derive.derivation import derivation_of
 from ..result import Segment, build_result
 from ..rhs import RHS, SimulationError
 from ..state import StateLayout, initial_values, parameter_vector
@@ -31,17 +32,19 @@ def numeric_route(system, limit: int | None = None) -> ArticulatedModel | None:
     n = len(system.coordinate_info)
     if n <= limit:
         return None
-    key = "numeric-articulated"
-    if key not in system._cache:
-        try:
-            model = ArticulatedModel(system)
-            model.route = (f"{system.title or system.name}: {n} degrees of freedom, above the symbolic limit of "
-                           f"{limit}; equations of motion evaluated numerically (articulated-body algorithm, "
-                           "recursive Newton–Euler, O(n) per step)")
-        except NotATree:
-            model = None
-        system._cache[key] = model
-    return system._cache[key]
+    return derivation_of(system).articulated(lambda: _articulated(system, n, limit))
+
+
+def _articulated(system, n: int, limit: int) -> ArticulatedModel | None:
+    """The articulated model of ``system`` with the route it takes, None when it is not a tree of pinned bodies."""
+    try:
+        model = ArticulatedModel(system)
+    except NotATree:
+        return None
+    model.route = (f"{system.title or system.name}: {n} degrees of freedom, above the symbolic limit of "
+                   f"{limit}; equations of motion evaluated numerically (articulated-body algorithm, "
+                   "recursive Newton–Euler, O(n) per step)")
+    return model
 
 
 class _Monitor:
