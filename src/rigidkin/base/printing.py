@@ -12,8 +12,6 @@ import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols, vlatex
 from sympy.printing.str import StrPrinter
 
-from ..model.speeds import quaternion_groups
-
 t = dynamicsymbols._t
 
 GREEK = {
@@ -145,12 +143,3 @@ def latex(expr) -> str:
     if isinstance(expr, sp.Eq):
         return f"{latex(expr.lhs)} = {latex(expr.rhs)}"
     return vlatex(expr)
-
-
-def euler_norms(system) -> list[tuple[str, object]]:
-    """(frame name, e₀² + e₁² + e₂² + e₃²) for each frame oriented by Euler parameters: the printed
-    equations of motion are written with that sum = 1 (``solution._readable_eom``)."""
-    import sympy as sp
-
-
-    return [(g.frame.name, sp.Add(*[e**2 for e in g.coordinates])) for g in quaternion_groups(system)]

@@ -24,7 +24,7 @@ from math import comb
 
 import sympy as sp
 
-from .algebra import atoms_of
+from .sampling import atoms_of, evaluate, state_atoms, state_point
 
 #: Expressions with more operations, or more distinct angles, than these are left as they are.
 COMPACT_LIMIT = 400
@@ -69,13 +69,11 @@ def compact(expr: sp.Basic) -> sp.Basic:
 def _same_value(a: sp.Basic, b: sp.Basic, trials: int = 3) -> bool:
     """``a = b`` at a few random states in machine arithmetic: a guard on the rewriting (a reading form
     must never change a value; where it would, the expression is kept as it was)."""
-    from . import algebra  # here, not at the top: algebra imports this module for ``readable``
-
     rng = random.Random(7)
-    atoms = algebra.state_atoms([a, b])
+    atoms = state_atoms([a, b])
     for _ in range(trials):
-        vals = algebra.state_point([a, b], rng, rng.uniform(0.1, 1.0), atoms=atoms)
-        va, vb = algebra.evaluate([a, b], vals)
+        vals = state_point([a, b], rng, rng.uniform(0.1, 1.0), atoms=atoms)
+        va, vb = evaluate([a, b], vals)
         if va != va or vb != vb:            # nan: not decidable here, keep the original
             return False
         if abs(va - vb) > 1e-9 * max(1.0, abs(va), abs(vb)):

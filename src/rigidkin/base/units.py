@@ -9,9 +9,11 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 
+from . import cache_folder
 from .errors import InputError
 from .private_files import folder_problem
 
@@ -49,15 +51,11 @@ def registry() -> pint.UnitRegistry:  # noqa: F821
 
 def _definitions_folder():
     """``<derivation cache>/pint`` (private, ours), or None where the cache is off or not safe."""
-    import warnings
-
-    from ..io import derivation_cache
-
-    if derivation_cache.disabled_by_env():
+    if cache_folder.disabled_by_env():
         return None
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")     # the derivation cache says why it is off when it is used
-        where = derivation_cache.folder()
+        where = cache_folder.folder()
     if where is None:
         return None
     folder = where.parent / "pint"

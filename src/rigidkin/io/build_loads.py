@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from ..base.errors import InputError
 from ..model.loads import V as DAMPER_SPEED
+from ..model.ropes import Wrap
 from . import schema as S
 from .expressions import (
     check_name,
@@ -81,8 +82,6 @@ class ConstraintsAndLoads:
             self.call(path, self.s.cable, name, points, self.scalar(c.length, path + ("length",)), bodies,
                       c.tension_name, c.description)
         elif isinstance(c, S.RopeSpec):
-            from ..model.ropes import Wrap
-
             stations = []
             for i, st in enumerate(c.path):
                 here = path + ("path", i)

@@ -29,11 +29,11 @@ import hashlib
 import hmac
 import os
 import sys
-import warnings
 from pathlib import Path
 
 from .. import __version__, examples
-from ..base.private_files import folder_problem, regular_and_ours, unsafe_ancestor, write_private
+from ..base.cache_folder import cache_dir, disabled_by_env, folder  # noqa: F401  (public here too)
+from ..base.private_files import regular_and_ours, write_private
 from ..base.trace import Trace
 
 MAGIC = b"rigidkin-derivation-2\n"
@@ -41,43 +41,6 @@ SECRET_NAME = "secret.key"
 MAX_ENTRY = 256 * 1024 * 1024            # bytes: a larger derivation is not kept
 MAX_ENTRIES = 200                         # the oldest beyond these are removed when one is written
 _CACHED = type(functools.cache(len))              # a memoized function (functools.cache) in what is kept
-
-
-def disabled_by_env() -> bool:
-    return os.environ.get("RIGIDKIN_NO_CACHE", "").strip().lower() not in ("", "0", "no", "false")
-
-
-def cache_dir() -> Path:
-    """The cache folder: ``$RIGIDKIN_CACHE``, else ``$XDG_CACHE_HOME/rigidkin``, else ``~/.cache/rigidkin``
-    (the same as the compiled-code cache, :func:`rigidkin.numeric.compiled.cache.cache_dir`)."""
-    env = os.environ.get("RIGIDKIN_CACHE")
-    if env:
-        return Path(env).expanduser()
-    return Path(os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")) / "rigidkin"
-
-
-def folder() -> Path | None:
-    """The entries' folder, made and checked private; None (with a warning) when it cannot be used safely."""
-    base = Path(os.path.realpath(cache_dir()))           # a link is judged by where it leads
-    where = base / "derivations"
-    try:
-        if not os.path.lexists(base):
-            base.parent.mkdir(parents=True, exist_ok=True)
-            base.mkdir(mode=0o700, exist_ok=True)
-        why = folder_problem(base) or unsafe_ancestor(base)
-        if not why:
-            if not os.path.lexists(where):
-                where.mkdir(mode=0o700, exist_ok=True)
-            why = folder_problem(where)
-            if not why and os.lstat(where).st_mode & 0o077:
-                os.chmod(where, 0o700)                   # our own folder: make it private
-    except OSError as exc:
-        why = f"{base} cannot be used ({exc.strerror or exc})"
-    if why:
-        warnings.warn(f"{why}, so the derivation cache is not used (set RIGIDKIN_CACHE to a folder of your own).",
-                      RuntimeWarning, stacklevel=2)
-        return None
-    return where
 
 
 def secret(where: Path) -> bytes:

@@ -23,67 +23,41 @@ Everything else — attribute access other than ``FRAME.axis``, subscripts, lamb
 strings, comparisons in an expression, calls of other names, dunder names, undeclared names — is
 refused with an :class:`~rigidkin.base.errors.InputError` that says which construct and at which column.
 The size of the input is bounded (length, nesting depth, number of nodes), so parsing never hangs.
+The language's words — limits, functions, reserved names, refused constructs — are in
+:mod:`rigidkin.io.language` (public here too).
 """
 
 from __future__ import annotations
 
 import ast
 import math
-from collections.abc import Callable
 
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
 from ..base.errors import InputError
 from ..model.checks import check_identifier, numeric_value
+from .language import (  # noqa: F401  (public here too: the language's limits, functions and reserved names)
+    CONSTRUCTS,
+    FUNCTIONS,
+    HINT,
+    MAX_CALLS_NESTED,
+    MAX_DEPTH,
+    MAX_DIGITS,
+    MAX_EXPONENT,
+    MAX_LENGTH,
+    MAX_MAGNITUDE,
+    MAX_NESTING,
+    MAX_NODES,
+    MAX_NUMBER_EXPONENT,
+    OPERATORS,
+    RELATIONS,
+    RESERVED,
+    slip,
+)
 from .scope import Scope, default_scope  # noqa: F401  (public here too: the language's scope)
 
 t = dynamicsymbols._t
-
-#: Limits on an expression string.
-MAX_LENGTH = 1000          # characters
-MAX_NESTING = 20           # nested brackets
-MAX_DEPTH = 100            # depth of the syntax tree
-MAX_NODES = 400            # nodes of the syntax tree
-MAX_EXPONENT = 12          # |p| in x**p (x not a number: (x + 1)**p would expand into p + 1 terms)
-MAX_NUMBER_EXPONENT = 100  # |p| in a**p with a number a (6.67*10**-11)
-MAX_DIGITS = 40            # digits of a number (written or computed)
-MAX_MAGNITUDE = 1e40       # |value| of a number written or computed (3**100, exp(10**10) are refused)
-MAX_CALLS_NESTED = 4       # functions called inside functions: sin(exp(cos(x)))
-
-#: The whitelisted functions: name → (sympy function, number of arguments).
-FUNCTIONS: dict[str, tuple[Callable, int]] = {
-    "sin": (sp.sin, 1), "cos": (sp.cos, 1), "tan": (sp.tan, 1),
-    "asin": (sp.asin, 1), "acos": (sp.acos, 1), "atan": (sp.atan, 1), "atan2": (sp.atan2, 2),
-    "sqrt": (sp.sqrt, 1), "exp": (sp.exp, 1), "log": (sp.log, 1), "abs": (sp.Abs, 1), "sign": (sp.sign, 1),
-}
-
-#: Names that the language itself gives a meaning: they cannot be declared as parameters, coordinates,
-#: frames or basis vectors.
-RESERVED = frozenset(FUNCTIONS) | {"dot", "ddot", "t", "pi", "slip"}
-
-#: ``slip(contact)`` in an event condition: the slip speed at a contact, as an unevaluated function
-#: of a symbol named after the contact (``slip(ground)`` → ``slip(Symbol('ground'))``).
-slip = sp.Function("slip")
-
-_CONSTRUCTS = {
-    ast.Subscript: "a subscript ([...])", ast.Lambda: "a lambda expression", ast.ListComp: "a list comprehension",
-    ast.SetComp: "a set comprehension", ast.DictComp: "a dict comprehension",
-    ast.GeneratorExp: "a generator expression", ast.List: "a list ([...])", ast.Tuple: "a tuple (a, b)",
-    ast.Set: "a set ({...})", ast.Dict: "a dict ({...})", ast.Compare: "a comparison",
-    ast.BoolOp: "'and'/'or'", ast.IfExp: "a conditional expression (if/else)", ast.JoinedStr: "an f-string",
-    ast.FormattedValue: "an f-string", ast.NamedExpr: "an assignment expression (:=)", ast.Await: "'await'",
-    ast.Yield: "'yield'", ast.YieldFrom: "'yield from'", ast.Starred: "a starred expression (*x)",
-    ast.Slice: "a slice (a:b)",
-}
-_OPERATORS = {
-    ast.FloorDiv: "//", ast.Mod: "%", ast.MatMult: "@", ast.BitXor: "^ (write ** for a power)",
-    ast.BitAnd: "&", ast.BitOr: "|", ast.LShift: "<<", ast.RShift: ">>", ast.Invert: "~", ast.Not: "not",
-}
-_RELATIONS = {ast.Lt: sp.StrictLessThan, ast.Gt: sp.StrictGreaterThan, ast.LtE: sp.LessThan,
-              ast.GtE: sp.GreaterThan}
-_HINT = ("Expressions use numbers, declared names, + - * / ** and parentheses, the functions sin, cos, "
-         "sqrt ... (see rigidkin.io.expressions), dot(q), ddot(q) and basis vectors such as F.x or R.y.")
 
 
 # --------------------------------------------------------------------------------------------------
@@ -97,7 +71,7 @@ class _Parser:
         self.text, self.scope, self.where, self.offset = text, scope, where, offset
         self.calls = 0              # functions being called around the node being built
 
-    def fail(self, message: str, node: ast.AST | None = None, hint: str | None = _HINT) -> InputError:
+    def fail(self, message: str, node: ast.AST | None = None, hint: str | None = HINT) -> InputError:
         col = getattr(node, "col_offset", None)
         at = f" at column {col + 1 + self.offset}" if col is not None else ""
         return InputError(f"in the expression {_snippet(self.text)}{at}: {message}.", where=self.where, hint=hint)
@@ -120,10 +94,10 @@ class _Parser:
         except SyntaxError as exc:
             col = f" at column {exc.offset + self.offset}" if exc.offset else ""
             raise InputError(f"the expression {_snippet(self.text)} is not valid syntax{col} ({exc.msg}).",
-                             where=self.where, hint=_HINT) from None
+                             where=self.where, hint=HINT) from None
         except (ValueError, RecursionError, MemoryError, OverflowError) as exc:
             raise InputError(f"the expression {_snippet(self.text)} cannot be read ({type(exc).__name__}).",
-                             where=self.where, hint=_HINT) from None
+                             where=self.where, hint=HINT) from None
         # bounded size and depth, counted without recursion
         count, stack = 0, [(tree.body, 1)]
         while stack:
@@ -148,8 +122,8 @@ class _Parser:
                 raise self.fail(f"{what} '{name}' is not allowed (names starting with '_', such as dunder names, "
                                 "are refused)", node)
         for node in nodes:
-            if type(node) in _CONSTRUCTS and not (condition and node is root and isinstance(node, ast.Compare)):
-                raise self.fail(f"{_CONSTRUCTS[type(node)]} is not allowed", node)
+            if type(node) in CONSTRUCTS and not (condition and node is root and isinstance(node, ast.Compare)):
+                raise self.fail(f"{CONSTRUCTS[type(node)]} is not allowed", node)
 
     # nodes --------------------------------------------------------------------------------------
     def build(self, node: ast.AST):
@@ -162,8 +136,8 @@ class _Parser:
             except (TypeError, ValueError, ArithmeticError, AttributeError, RecursionError) as exc:
                 raise self.fail(f"it cannot be evaluated ({type(exc).__name__}: {str(exc)[:80]})", node,
                                 hint=None) from None
-        if type(node) in _CONSTRUCTS:
-            raise self.fail(f"{_CONSTRUCTS[type(node)]} is not allowed", node)
+        if type(node) in CONSTRUCTS:
+            raise self.fail(f"{CONSTRUCTS[type(node)]} is not allowed", node)
         raise self.fail(f"the construct '{type(node).__name__}' is not allowed", node)
 
     def _Constant(self, node: ast.Constant):
@@ -234,13 +208,13 @@ class _Parser:
             return -self.build(node.operand)
         if isinstance(node.op, ast.UAdd):
             return self.build(node.operand)
-        raise self.fail(f"the operator {_OPERATORS.get(type(node.op), type(node.op).__name__)} is not allowed",
+        raise self.fail(f"the operator {OPERATORS.get(type(node.op), type(node.op).__name__)} is not allowed",
                         node)
 
     def _BinOp(self, node: ast.BinOp):
         op = type(node.op)
-        if op in _OPERATORS:
-            raise self.fail(f"the operator {_OPERATORS[op]} is not allowed", node)
+        if op in OPERATORS:
+            raise self.fail(f"the operator {OPERATORS[op]} is not allowed", node)
         if op is ast.Pow:
             return self._power(node)
         a, b = self.build(node.left), self.build(node.right)
@@ -501,12 +475,12 @@ def parse_condition(text, scope: Scope, where: str | None = None) -> sp.core.rel
         raise InputError(f"expected a condition such as \"dot(x) > 0\", not the number {text}.", where=where)
     p = _Parser(text, scope, where)
     node = p.tree(text, condition=True)
-    if not isinstance(node, ast.Compare) or len(node.ops) != 1 or type(node.ops[0]) not in _RELATIONS:
+    if not isinstance(node, ast.Compare) or len(node.ops) != 1 or type(node.ops[0]) not in RELATIONS:
         raise InputError(f"{_snippet(text)} is not a condition.", where=where,
                          hint="Write one comparison with <, >, <= or >=, e.g. \"dot(x) - r*dot(phi) > 0\".")
     lhs = _want(p.check(p.build(node.left)), "scalar", text, where)
     rhs = _want(p.check(p.build(node.comparators[0])), "scalar", text, where)
-    return _RELATIONS[type(node.ops[0])](lhs, rhs, evaluate=False)
+    return RELATIONS[type(node.ops[0])](lhs, rhs, evaluate=False)
 
 
 def check_name(name: str, kind: str, where: str | None = None) -> str:

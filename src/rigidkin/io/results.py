@@ -17,6 +17,8 @@ from typing import Any
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
+from ..derive.solution import READABLE_DOF, LazyMap
+
 t = dynamicsymbols._t
 
 
@@ -36,8 +38,6 @@ def regime_data(regime) -> dict:
     computed (M q̈ = f gives them; their closed form is too large to be data anyone reads), and the
     reactions are written in terms of q̈.
     """
-    from ..derive.solution import READABLE_DOF, LazyMap
-
     acc = regime.accelerations
     large = regime.mass_matrix.rows > READABLE_DOF and isinstance(acc, LazyMap) and not acc.computed
     return {

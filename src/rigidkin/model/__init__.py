@@ -2,8 +2,9 @@
 
 from . import shapes
 from .bodies import Body
-from .constraints import Cable, Collar, Contact, Coulomb, Pin
+from .constraints import Cable, Collar, Contact, Pin
 from .frames import Frame
+from .friction_kinds import Coulomb
 from .loads import Damper, Force, Gravity, SlidingFriction, Spring, Torque, TorsionalSpring
 from .points import Point
 from .quantities import Coordinate, Parameter

@@ -17,47 +17,10 @@ import sympy as sp
 from sympy.physics.vector import Vector
 
 from ..base.errors import ModelError
+from .friction3d import SlidingFriction3D, slip_validity
+from .friction_kinds import ROLLING, SMOOTH, Coulomb  # noqa: F401  (public here too: constraints.Coulomb ...)
 from .loads import Application, SlidingFriction
 from .points import Point
-
-SMOOTH = "smooth"
-ROLLING = "rolling"
-
-
-@dataclass(frozen=True)
-class Coulomb:
-    """Coulomb friction: kinetic coefficient ``mu`` (µk) and static coefficient ``mu_s`` (µs).
-
-    A contact sticks while the friction it needs satisfies |F| ≤ µs N; while it slides the friction
-    is µk N against the slip.  A single coefficient (``mu_s`` None) means both: ``Coulomb(0.3)``.
-    """
-
-    mu: sp.Expr
-    mu_s: sp.Expr | None = None
-
-    def __post_init__(self):
-        if self.mu_s is not None and sp.sympify(self.mu_s) == sp.sympify(self.mu):
-            object.__setattr__(self, "mu_s", None)
-        a, b = sp.sympify(self.static), sp.sympify(self.mu)
-        if a.is_number and b.is_number and bool(a < b):
-            raise ModelError(f"the static coefficient of friction µs = {a} is smaller than the kinetic one "
-                             f"µk = {b}; a contact that starts to slip would need less friction than it had.",
-                             where="friction", hint="Give µs ≥ µk (a single µ means both).")
-
-    @property
-    def static(self) -> sp.Expr:
-        """µs: sticking holds while |F| ≤ µs N."""
-        return self.mu if self.mu_s is None else self.mu_s
-
-    @property
-    def kinetic(self) -> sp.Expr:
-        """µk: the sliding friction is µk N against the slip."""
-        return self.mu
-
-    @property
-    def two(self) -> bool:
-        """Whether static and kinetic coefficients differ (µs given apart from µk)."""
-        return self.mu_s is not None
 
 
 @dataclass(frozen=True, eq=False)
@@ -284,7 +247,6 @@ class Contact(Constraint):
             return []
         kind, extra = SlidingFriction, {}
         if not kin.planar:              # the slip direction anywhere in the tangent plane (model.friction3d)
-            from .friction3d import SlidingFriction3D
 
             kind, extra = SlidingFriction3D, {"contact": self}
         return [kind(self.name, body=self.body, centre=self.centre, radius=self.radius,
@@ -295,7 +257,6 @@ class Contact(Constraint):
 
     def validity(self, setup, react) -> list:
         """In 3D: slipping while |v_s| > 0, sticking within the friction cone (model.friction3d)."""
-        from .friction3d import slip_validity
 
         return slip_validity(self, setup, react)
 

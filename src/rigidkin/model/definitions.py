@@ -27,8 +27,9 @@ from sympy.core.function import AppliedUndef
 from sympy.core.symbol import Str
 from sympy.physics.vector import dynamicsymbols
 
+from ..base.dimensions import DimensionMismatch, dimension_of, symbol_dimensions
 from ..base.errors import ModelError
-from ..base.units import Dimension
+from ..base.units import Dimension, unit_dimension
 from .checks import numeric_value
 
 t = dynamicsymbols._t
@@ -158,9 +159,6 @@ def define(system, name: str, expression, unit: str | None = None, description: 
            where: str | None = None) -> Definition:
     """Check ``expression`` (constant, dimensionally consistent, real at the parameters' values) and
     return the Definition of ``name``; its ``quantity`` is positive when its value is."""
-    from ..base.dimensions import DimensionMismatch, dimension_of, symbol_dimensions
-    from ..base.units import unit_dimension
-
     where = where or f"definition {name}"
     expr = sp.sympify(expression)
     moving = expr.atoms(AppliedUndef) | ({t} & expr.free_symbols)

@@ -25,6 +25,7 @@ import sympy as sp
 from sympy.physics.vector import Vector
 
 from ..base.trace import LazyEquations
+from .friction_kinds import Coulomb
 from .loads import Application, SlidingFriction
 
 
@@ -132,8 +133,6 @@ class SlidingFriction3D(SlidingFriction):
 def slip_validity(contact, setup, react) -> list[tuple[sp.Expr, str]]:
     """The 3D condition of a sticking contact as (margin ≥ 0, words): the friction within the cone µs N.
     (A slipping contact's regime, |v_s| > 0, is where its direction û is defined.)"""
-    from .constraints import Coulomb
-
     kin = setup.kin
     if kin.planar or not isinstance(contact.friction, Coulomb):
         return []

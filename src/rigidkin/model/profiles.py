@@ -24,6 +24,7 @@ import sympy as sp
 from sympy.physics.vector import Vector
 
 from ..base.errors import ModelError
+from ..base.printing import text, text_vector
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,8 +41,6 @@ class Arc:
         return kin.simplify_expr((-n).dot(self.toward) - sp.cos(self.half_angle))
 
     def describe(self) -> str:
-        from ..base.printing import text, text_vector
-
         return f"within {text(self.half_angle)} of {text_vector(self.toward)}"
 
 

@@ -217,6 +217,12 @@ def quaternion_groups(system) -> list[SpeedGroup]:
     return [g for g in getattr(system, "speed_groups", {}).values() if g.kind == "quaternion"]
 
 
+def euler_norms(system) -> list[tuple[str, object]]:
+    """(frame name, e₀² + e₁² + e₂² + e₃²) for each frame oriented by Euler parameters: the printed
+    equations of motion are written with that sum = 1 (``solution._readable_eom``)."""
+    return [(g.frame.name, sp.Add(*[e**2 for e in g.coordinates])) for g in quaternion_groups(system)]
+
+
 def require_rate_speeds(system, what: str) -> None:
     """Refuse, in one paragraph, a closed-form analysis (``what``) that linearises in q and q̇ when the
     system's speeds are not the coordinate rates (body angular-velocity components, quaternions)."""
