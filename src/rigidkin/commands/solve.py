@@ -79,7 +79,8 @@ _REL = {">": ">", "<": "<", ">=": r"\geq", "<=": r"\leq"}
 def latex_text(sol, spec, answers) -> str:
     import sympy as sp
 
-    from ..base.printing import euler_norms, latex
+    from ..base.printing import latex
+    from ..model.speeds import euler_norms
     from ..report.text import reaction_labels
 
     s = sol.system

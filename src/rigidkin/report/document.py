@@ -15,9 +15,9 @@ from dataclasses import dataclass, field
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..base.printing import euler_norms
 from ..base.printing import text as plain_text
 from ..base.trace import SECTIONS
+from ..model.speeds import euler_norms
 
 t = dynamicsymbols._t
 

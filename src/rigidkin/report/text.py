@@ -8,9 +8,10 @@ from __future__ import annotations
 
 from sympy.physics.vector import dynamicsymbols
 
-from ..base.printing import euler_norms, text
+from ..base.printing import text
 from ..base.textsafe import terminal_safe
 from ..derive.derivation import derivation_of
+from ..model.speeds import euler_norms
 
 t = dynamicsymbols._t
 _INDENT = "    "
