@@ -64,7 +64,7 @@ def test_system_and_result_bundles(ladder):
 
 
 def test_a_dollar_in_text_is_not_math():
-    from rigidkin.report.document import Paragraph
+    from rigidkin.report.blocks import Paragraph
     from rigidkin.report.jupyter import fragment
 
     html = fragment("costs", [Paragraph("between $5 and $10")])

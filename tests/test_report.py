@@ -16,7 +16,7 @@ from rigidkin import examples
 from rigidkin.base.trace import SECTIONS
 from rigidkin.cli import main
 from rigidkin.report import REPORT_SECTIONS, build_document, render
-from rigidkin.report.document import Equations, Step
+from rigidkin.report.blocks import Equations, Step
 from rigidkin.report.notation import latex, mathml, split_label
 
 t = dynamicsymbols._t
@@ -185,7 +185,8 @@ def test_cli_report_errors_are_one_paragraph(argv, words, capsys, tmp_path, monk
 def test_check_section_shows_each_verdict_and_a_disagreement_with_both_forms():
     from types import SimpleNamespace
 
-    from rigidkin.report.document import Math, Paragraph, Table, check_table
+    from rigidkin.report.blocks import Math, Paragraph, Table
+    from rigidkin.report.document import check_table
 
     th = dynamicsymbols("theta")
     good = SimpleNamespace(law="kane", equation="θ̈", status="agrees", how="symbolic: identical", ours=None,
@@ -206,7 +207,7 @@ def test_check_section_shows_each_verdict_and_a_disagreement_with_both_forms():
 
 @pytest.mark.skipif(not hasattr(rk.Solution, "check"), reason="Solution.check (the cross-check) is not available")
 def test_check_section_is_the_solutions_cross_check(ladder):
-    from rigidkin.report.document import Table
+    from rigidkin.report.blocks import Table
 
     doc = build_document(ladder, figures=False, checks=True)
     tables = [b for b in doc.section("checks").blocks if isinstance(b, Table)]

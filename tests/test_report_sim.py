@@ -13,7 +13,7 @@ from rigidkin import examples
 from rigidkin.numeric.simulate import simulate
 from rigidkin.report import build_document, render
 from rigidkin.report.animate import animate
-from rigidkin.report.document import Animation, Figure, Table
+from rigidkin.report.blocks import Animation, Figure, Table
 from rigidkin.report.plots import phase_portrait
 
 

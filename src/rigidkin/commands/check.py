@@ -13,6 +13,7 @@ import json
 
 from ..base.errors import RigidkinError
 from ..base.textsafe import terminal_safe
+from ..derive.laws import parse_method
 from .common import guarded, json_safe, open_problem, progress, with_file
 from .options import add_no_cache, add_timeout, parse_modes
 
@@ -57,8 +58,6 @@ def run(args) -> int:
     expected = [(e, parse_expectation(e, system)) for e in args.expect]
     laws = None if args.laws is None else [w.strip() for w in args.laws.split(",") if w.strip()]
     if laws is not None:
-        from ..derive.laws import parse_method
-
         for w in laws:
             parse_method(w)
     from ..derive.laws.crosscheck import cross_check, expectation

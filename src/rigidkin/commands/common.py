@@ -1,43 +1,19 @@
-"""What the subcommands share: finding a problem (a bundled example name or a file), loading it, a
-progress line for slow steps, a time limit, and turning unexpected failures into one paragraph.
+"""What the subcommands share: opening a problem (loaded by :mod:`rigidkin.io.load`, or read from the
+derivation cache), a progress line for slow steps, a time limit, and turning unexpected failures into one
+paragraph.
 """
 
 from __future__ import annotations
 
 import threading
 from contextlib import contextmanager
-from pathlib import Path
 
-from .. import examples
 from ..base.errors import RigidkinError
 from ..base.textsafe import terminal_safe
 from ..base.timelimit import time_limit as limit
-from ..base.units import parse_quantity
 from ..io.derivation_cache import Derivation
+from ..io.load import load_system
 from .deadline import set_step
-
-
-def load_system(problem: str):
-    """A System from a bundled example name (``ladder``) or a problem file path.
-
-    Returns (system, spec) where ``spec`` is the parsed problem file (None for a Python example).
-    A bundled example with a problem file (``examples/ladder.toml``) is read from that file.
-    """
-    from ..io.problem import load_problem
-
-    path = Path(problem)
-    if path.suffix == ".toml" and not path.exists() and path.stem in examples.names():
-        raise RigidkinError(f"there is no file {problem}.", where=problem,
-                            hint=f"The bundled example of that name is solved with 'rigidkin solve {path.stem}'.")
-    if path.suffix == ".toml" or path.exists():
-        return load_problem(path)
-    if problem in examples.names():
-        toml = examples.HERE / f"{problem}.toml"
-        if toml.exists():
-            return load_problem(toml)
-        return examples.build(problem), None
-    raise RigidkinError(f"'{problem}' is neither a problem file nor a bundled example.",
-                        hint=f"Bundled examples: {', '.join(examples.names())}. Run 'rigidkin list'.")
 
 
 def open_problem(args):
@@ -134,21 +110,6 @@ def guarded(args, fn, *a, **kw):
         raise RigidkinError(f"internal error: {type(exc).__name__}: {exc}",
                             hint="This is a bug in rigidkin: run again with --debug for the traceback and report "
                                  "it with the problem file.") from None
-
-
-def value(text: str, where: str) -> float:
-    """A number typed on the command line: SI, or with a unit (``"30 deg"``), finite.
-
-    Every command reads its values here, through rigidkin's one quantity parser.
-    """
-    import math
-
-
-    v = parse_quantity(text, None, where)
-    if not math.isfinite(v):
-        raise RigidkinError(f"'{text}' is not a finite number.", where=where,
-                            hint="Give a finite value, e.g. 0.5 or '30 deg'.")
-    return v
 
 
 def with_file(exc: RigidkinError, spec) -> RigidkinError:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 
+from ..base.outfile import check_target, writing
 from .common import guarded, json_safe, progress
 from .options import add_timeout
 
@@ -30,8 +31,6 @@ def run(args) -> int:
     from ..grading.worksheet import load_worksheet
 
     if args.output:
-        from ..base.outfile import check_target
-
         check_target(args.output, "the graded worksheet")
     with progress(f"Reading {args.worksheet}"):
         ws = guarded(args, load_worksheet, args.worksheet)
@@ -44,8 +43,6 @@ def run(args) -> int:
     else:
         out = as_text(report)
     if args.output:
-        from ..base.outfile import writing
-
         with writing(args.output, "the graded worksheet") as fh:
             fh.write(out if out.endswith("\n") else out + "\n")
     else:

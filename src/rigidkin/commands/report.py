@@ -10,7 +10,9 @@ from __future__ import annotations
 from ..base.errors import InputError, RigidkinError
 from ..base.outfile import OutputError, check_target, writing
 from ..base.textsafe import terminal_safe
-from .common import guarded, open_problem, progress, value, with_file
+from ..io.load import value
+from ..report.blocks import Animation
+from .common import guarded, open_problem, progress, with_file
 from .options import add_no_cache, add_timeout, end_time
 from .solve import answer_questions
 
@@ -60,7 +62,7 @@ def _numbers(pairs: dict, what: str) -> dict:
 
 
 def run(args) -> int:
-    from ..report.document import Animation, build_document
+    from ..report.document import build_document
     from ..report.output import format_of, write_document
 
     fmt = format_of(args.output)

@@ -7,6 +7,7 @@ import warnings
 
 from ..base.errors import RigidkinError
 from ..base.textsafe import terminal_safe
+from ..derive.laws import METHODS
 from ..io.derivation_cache import read_output, write_output
 from .common import guarded, json_safe, open_problem, progress, with_file
 from .options import EXIT_UNANSWERED, add_no_cache, add_timeout, parse_modes
@@ -16,10 +17,6 @@ def register(sub) -> None:
 
     p = sub.add_parser("solve", help="derive the equations of motion, reactions and answers")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name (see 'rigidkin list')")
-    try:
-        from ..derive.laws import METHODS
-    except ImportError:            # pragma: no cover - the laws package is part of rigidkin
-        METHODS = ("newton-euler",)
     p.add_argument("--method", default="newton-euler",
                    help=f"the balance law to derive with: {', '.join(METHODS)} (about-point:POINT names the point; "
                         "default newton-euler)")

@@ -19,8 +19,8 @@ from ..base.outfile import check_target
 from ..base.textsafe import terminal_safe
 from ..base.units import MAX_MAGNITUDE
 from ..io.derivation_cache import read_kept, write_kept
+from ..io.load import value as quantity
 from .common import guarded, open_problem
-from .common import value as quantity
 from .deadline import set_step
 from .options import add_no_cache, add_timeout, chunk, end_time, threads, tolerance, workers
 from .simulate import _pairs as pairs

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 
 from ..base.errors import InputError
+from ..base.outfile import check_target, writing
 from ..base.textsafe import terminal_safe
 from .common import guarded, json_safe, progress
 from .options import add_timeout
@@ -40,15 +41,11 @@ def run(args) -> int:
     if not (math.isfinite(args.tolerance) and 0 < args.tolerance < 1):
         raise InputError("--tolerance is a relative tolerance between 0 and 1.", where="--tolerance")
     if args.output:
-        from ..base.outfile import check_target
-
         check_target(args.output, "the Moodle XML", (".xml",))
     vary = parse_vary(args.vary)
     with progress(f"Solving {args.count} variants of {args.problem}"):
         ps = guarded(args, make_set, args.problem, args.count, args.seed, vary, args.tolerance)
     if args.output:
-        from ..base.outfile import writing
-
         with writing(args.output, "the Moodle XML", suffixes=(".xml",)) as fh:
             fh.write(as_moodle(ps))
     if args.format == "json":

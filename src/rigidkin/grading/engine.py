@@ -14,10 +14,12 @@ from pathlib import Path
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols, outer
 
+from ..analysis.answers import answer
 from ..base.errors import RigidkinError
-from ..commands.common import load_system
 from ..derive.laws import energy
 from ..derive.laws.newton_euler import body_balances
+from ..io.load import load_system
+from ..io.problem import system_scope
 from ..model.speeds import quaternion_groups
 from .space import Sampler, free_dim, plain_accel, to_plain
 
@@ -111,8 +113,6 @@ class Reference:
     def answers(self):
         """The answers to the problem's questions, in order (computed once)."""
         if "answers" not in self._rows:
-            from ..analysis.answers import answer
-
             out, context = {}, {}
             for q in self.spec_questions():
                 try:
@@ -263,8 +263,6 @@ def _shift(m, d: Vector, F) -> object:
 
 def reference(ref: str, mode: dict | None = None) -> Reference:
     """The engine's derivation of the problem ``ref`` (a bundled name or a file path), cached per run."""
-    from ..io.problem import system_scope
-
     mode = dict(mode or {})
     p = Path(ref)
     stamp = p.stat().st_mtime_ns if p.is_file() else None

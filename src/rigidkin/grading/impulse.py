@@ -16,9 +16,10 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.errors import InputError
 from ..base.printing import text
 from . import space
+from .claims import parse_claim
 from .engine import Reference
 from .feedback import dimension_problem
-from .steps import CORRECT, INCORRECT, StepResult, parse_claim
+from .verdicts import CORRECT, INCORRECT, StepResult
 from .worksheet import Step
 
 t = dynamicsymbols._t

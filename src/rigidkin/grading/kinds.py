@@ -27,10 +27,13 @@ from ..analysis.answers import numeric_values_from
 from ..base.errors import InputError
 from ..base.printing import text
 from ..derive.laws.newton_euler import body_loads
+from ..io.expressions import parse_scalar, parse_vector
+from ..io.load import value
 from . import space
+from .claims import Unreadable, read
 from .engine import Reference
 from .mistakes import kinematic_variants
-from .steps import CORRECT, INCORRECT, Carried, StepResult, read
+from .verdicts import CORRECT, INCORRECT, Carried, StepResult
 from .worksheet import Step
 
 t = dynamicsymbols._t
@@ -60,8 +63,6 @@ def _basis_of(ref: Reference, v: Vector):
 
 
 def grade_kinematics(ref: Reference, st: Step, carried: Carried) -> StepResult:
-    from ..io.expressions import parse_vector
-
     m = _LHS.match(st.claim)
     if not m:
         raise _unreadable("a kinematics claim reads 'v_P = ...', 'a_P = ...', 'omega_R = ...' or 'alpha_R = ...' "
@@ -130,9 +131,7 @@ def _vec_text(ref: Reference, v: Vector, like: Vector) -> str:
 
 
 def _unreadable(msg: str):
-    from .steps import _Unreadable
-
-    return _Unreadable(f"unreadable: {msg}")
+    return Unreadable(f"unreadable: {msg}")
 
 
 # free-body diagrams -----------------------------------------------------------------------------------
@@ -148,8 +147,6 @@ def _items(st: Step) -> list[str]:
 
 
 def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
-    from ..io.expressions import parse_vector
-
     bodies = ref.system.bodies
     if st.body is None and len(bodies) > 1:
         raise InputError("a free-body diagram names its body (body = \"NAME\") when the problem has several.",
@@ -271,8 +268,6 @@ def _values_of(answer) -> list:
 
 
 def grade_answer(ref: Reference, st: Step) -> StepResult:
-    from ..io.expressions import parse_scalar
-
     res = StepResult(st.index, st.kind, INCORRECT)
     a = ref.answers().get(st.question)
     if isinstance(a, Exception) or a is None:
@@ -282,8 +277,6 @@ def grade_answer(ref: Reference, st: Step) -> StepResult:
     try:
         claim = parse_scalar(st.claim, ref.scope, st.where)
     except InputError:
-        from ..commands.common import value
-
         claim = sp.Float(read("value", value, st.claim, st.where))
     params = numeric_values_from(ref.system)
     rtol = st.tolerance or ANSWER_RTOL

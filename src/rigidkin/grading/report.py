@@ -9,7 +9,7 @@ Everything that came from the worksheet or the problem file is escaped
 from __future__ import annotations
 
 from ..base.textsafe import html_text, terminal_safe
-from .steps import CORRECT, GradeReport
+from .verdicts import CORRECT, GradeReport
 
 _MARK = {"correct": "✓", "incorrect": "✗", "unreadable": "?"}
 

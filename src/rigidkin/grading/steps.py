@@ -12,64 +12,24 @@ is a *carried error*, named with the steps it comes from.
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass, field
 
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..base.errors import InputError, RigidkinError
+from ..base.errors import InputError
 from ..base.printing import text
+from ..io.expressions import parse_vector
 from . import space
-from .engine import Reference, reference
+from .claims import Unreadable, parse_claim, read
+from .engine import Candidate, Reference, reference
 from .feedback import dimension_problem, expandable, term_diff
+from .impulse import grade_impulse
+from .kinds import grade_answer, grade_fbd, grade_kinematics
 from .mistakes import force_candidates, moment_candidates
+from .verdicts import CORRECT, INCORRECT, UNREADABLE, Carried, GradeReport, StepResult
 from .worksheet import Step, Worksheet, load_worksheet
 
 t = dynamicsymbols._t
-CORRECT, INCORRECT, UNREADABLE = "correct", "incorrect", "unreadable"
-
-
-@dataclass
-class StepResult:
-    index: int
-    kind: str
-    verdict: str
-    feedback: list[str] = field(default_factory=list)
-    claim: str = ""                     # the student's claim as written
-    expected: str = ""                  # the engine's form of the step, for the report
-    carried_from: tuple[int, ...] = ()  # earlier steps this (wrong) step follows from
-    differences: list[tuple[str, str]] = field(default_factory=list)   # (student's, engine's) per difference
-
-
-@dataclass
-class GradeReport:
-    problem: str
-    title: str
-    student: str
-    steps: list[StepResult]
-
-    @property
-    def correct(self) -> int:
-        return sum(1 for s in self.steps if s.verdict == CORRECT)
-
-    @property
-    def score(self) -> float:
-        return round(self.correct / len(self.steps), 4) if self.steps else 0.0
-
-    @property
-    def ok(self) -> bool:
-        return all(s.verdict == CORRECT for s in self.steps)
-
-
-@dataclass
-class Carried:
-    """What the student's earlier wrong steps said, for grading later steps against them."""
-
-    accel: dict = field(default_factory=dict)      # body → (step, vector a_G)
-    alpha: dict = field(default_factory=dict)      # body → (step, vector α)
-    loads: dict = field(default_factory=dict)      # body → (step, [(vector, location | None)])
-    balances: list = field(default_factory=list)   # (step, expr = 0, the engine's nearest equation)
-    cache: dict = field(default_factory=dict)      # the student's modified equations, per set of steps
 
 
 def grade_file(path) -> GradeReport:
@@ -86,8 +46,6 @@ def grade(ws: Worksheet) -> GradeReport:
                              hint=f"Questions of {ws.problem}: {known}.")
     carried = Carried()
     results = []
-    from .kinds import grade_answer, grade_fbd, grade_kinematics
-
     for st in ws.steps:
         claim = st.claim if isinstance(st.claim, str) else "; ".join(st.claim)
         try:
@@ -98,12 +56,10 @@ def grade(ws: Worksheet) -> GradeReport:
             elif st.kind == "answer":
                 res = grade_answer(ref, st)
             elif st.law == "impulse":
-                from .impulse import grade_impulse
-
                 res = grade_impulse(ref, st)
             else:
                 res = grade_equation(ref, st, carried)
-        except _Unreadable as exc:
+        except Unreadable as exc:
             res = StepResult(st.index, st.kind, UNREADABLE, [str(exc)])
         res.claim = claim
         results.append(res)
@@ -111,30 +67,7 @@ def grade(ws: Worksheet) -> GradeReport:
     return GradeReport(ws.problem, title, ws.student, results)
 
 
-class _Unreadable(Exception):
-    pass
-
-
-def read(kind: str, fn, *args):
-    """Run a parser; its refusal makes the step unreadable (the message says where and why)."""
-    try:
-        return fn(*args)
-    except RigidkinError as exc:
-        raise _Unreadable(f"unreadable {kind}: {exc.message}" + (f" {exc.hint}" if exc.hint else "")) from None
-
-
 # equations: balance and eom ---------------------------------------------------------------------------
-def parse_claim(ref: Reference, st: Step):
-    from ..io.expressions import parse_equation, parse_scalar
-
-    txt = st.claim
-    bare = txt.replace("<=", "").replace(">=", "").replace("==", "")
-    if "=" in bare:
-        eq = read("equation", parse_equation, txt, ref.scope, st.where)
-        return eq.lhs, eq.rhs
-    return read("equation", parse_scalar, txt, ref.scope, st.where), sp.Integer(0)
-
-
 def _candidates(ref: Reference, st: Step, variants: bool = True):
     """The engine's equations for the law the step names (all laws when it names none), cached."""
     key = ("candidates", st.law, st.body, st.point, st.direction, variants)
@@ -150,8 +83,6 @@ def _make_candidates(ref: Reference, st: Step, variants: bool):
                          hint=f"Bodies: {', '.join(ref.system.bodies)}.")
     direction = None
     if st.direction:
-        from ..io.expressions import parse_vector
-
         direction = read("direction", parse_vector, st.direction, ref.scope, st.where)
     out = []
     laws = [st.law] if st.law else ["force", "moment", "energy"]
@@ -175,8 +106,6 @@ def _make_candidates(ref: Reference, st: Step, variants: bool):
             out += moment_candidates(ref, b, pts, axes) if variants else \
                 [c for c in every if c.mistake is None and c.law == "moment" and c.body == b.name]
     if "energy" in laws:
-        from .engine import Candidate
-
         out += [Candidate("work–energy: dE/dt = ΣP_nc", e, None, "energy") for e in ref.energy_equation()]
     return out
 

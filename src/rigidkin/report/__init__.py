@@ -1,6 +1,9 @@
 """Presenting results: the derivation as a document (text, Markdown, LaTeX, self-contained HTML), free-body
 diagrams, plots of a simulation and an animation of the motion.
 
+The names below are loaded when first used, so that importing one module of this package (the plain-text
+solution, the notation) runs neither the document builder nor matplotlib.
+
 >>> import rigidkin as rk
 >>> from rigidkin import examples, report
 >>> doc = report.build_document(examples.build("ladder").solve(), figures=False, checks=False)
@@ -8,16 +11,26 @@ diagrams, plots of a simulation and an animation of the motion.
 ['Problem', 'Parameters and coordinates', 'Frames and coordinates']
 """
 
-from .document import REPORT_SECTIONS, Document, build_document
-from .output import render, write_document, write_report
+from __future__ import annotations
 
+import importlib
 
-def free_body_diagram(obj, **kwargs):
-    """Free-body diagrams of a System or Solution (see :func:`rigidkin.report.fbd.free_body_diagram`)."""
-    from .fbd import free_body_diagram as fbd
-
-    return fbd(obj, **kwargs)
-
+#: public name → the module of this package that defines it
+_LAZY = {"Document": ".blocks", "REPORT_SECTIONS": ".document", "build_document": ".document",
+         "render": ".output", "write_document": ".output", "write_report": ".output",
+         "free_body_diagram": ".fbd"}
 
 __all__ = ["Document", "REPORT_SECTIONS", "build_document", "render", "write_document", "write_report",
            "free_body_diagram"]
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

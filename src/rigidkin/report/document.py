@@ -1,4 +1,4 @@
-"""The report as a document: sections of blocks that every renderer (Markdown, LaTeX, HTML) reads.
+"""The report as a document: a solution laid out in sections of blocks (:mod:`rigidkin.report.blocks`).
 
 ``build_document`` lays a solution out in the order of the method: the problem, its parameters and
 coordinates, then the derivation trace section by section (frames and coordinates, kinematics,
@@ -10,7 +10,6 @@ this module only arranges it and adds the tables and figures.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
 
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
@@ -18,84 +17,9 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.printing import text as plain_text
 from ..base.trace import SECTIONS
 from ..model.speeds import euler_norms
+from .blocks import Document, Equations, Figure, Math, Paragraph, Section, Step, Table
 
 t = dynamicsymbols._t
-
-
-# blocks ---------------------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Math:
-    """A formula: an expression, vector or dyadic, an equation (lhs, rhs), or ``expr relation 0``."""
-
-    obj: object
-    relation: str | None = None
-
-
-@dataclass(frozen=True)
-class Paragraph:
-    text: str
-
-
-@dataclass(frozen=True)
-class Equations:
-    """Displayed formulas, one per line."""
-
-    items: tuple[Math, ...]
-
-
-@dataclass(frozen=True)
-class Step:
-    """One recorded step of the derivation: title, formulas, why, and the law that recorded it."""
-
-    title: str
-    equations: tuple[Math, ...]
-    why: str = ""
-    law: str = ""
-
-
-@dataclass(frozen=True)
-class Table:
-    """A table whose cells are text (str) or ``Math``."""
-
-    columns: tuple[str, ...]
-    rows: tuple[tuple, ...]
-    caption: str = ""
-
-
-@dataclass(frozen=True)
-class Figure:
-    key: str
-    png: bytes
-    caption: str
-    alt: str = ""
-
-
-@dataclass(frozen=True)
-class Animation:
-    key: str
-    html: str              # an HTML5 player (matplotlib's to_jshtml: frames and script, no network)
-    gif: bytes | None
-    caption: str
-
-
-@dataclass
-class Section:
-    key: str
-    title: str
-    blocks: list = field(default_factory=list)
-
-
-@dataclass
-class Document:
-    title: str
-    subtitle: str
-    sections: list[Section]
-
-    def section(self, key: str) -> Section:
-        for s in self.sections:
-            if s.key == key:
-                return s
-        raise KeyError(key)
 
 
 def slug(title: str) -> str:

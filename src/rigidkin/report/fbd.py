@@ -25,6 +25,7 @@ from matplotlib import patches  # noqa: E402
 from matplotlib.mathtext import MathTextParser  # noqa: E402
 
 from ..base.printing import text as plain_text  # noqa: E402
+from ..derive.mode import setup_mode  # noqa: E402
 from .drawing import draw_body, draw_surfaces  # noqa: E402
 from .geometry import Geometry, body_size  # noqa: E402
 from .geometry import t as geom_t  # noqa: E402
@@ -253,8 +254,6 @@ def free_body_diagram(obj, bodies=None, values=None, mode=None, parameters=None)
     ``values`` gives coordinates (name or symbol → number) of the configuration drawn (default: the
     initial values); ``mode`` a contact mode for a System; ``parameters`` overrides parameter values.
     """
-    from ..derive.mode import setup_mode
-
     if hasattr(obj, "setup") and hasattr(obj, "regimes"):
         system, setup = obj.system, obj.setup
     else:

@@ -16,6 +16,7 @@ from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 
 from ..base import algebra
 from ..base.errors import InputError
+from ..derive.mode import setup_mode
 from ..numeric.compiled.codesafe import safe_lambdify
 
 t = dynamicsymbols._t
@@ -45,8 +46,6 @@ class Geometry:
     """
 
     def __init__(self, system, setup=None, values: Mapping | None = None):
-        from ..derive.mode import setup_mode
-
         self.system = system
         self.setup = setup or setup_mode(system)
         self.F = system.inertial

@@ -16,7 +16,7 @@ from functools import cache
 from importlib import resources
 
 from ..base.textsafe import html_text
-from .document import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
+from .blocks import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
 from .notation import mathml, mathml_condition
 
 CSP = "default-src 'none'; img-src data:; font-src data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'"

@@ -19,7 +19,8 @@ import re
 from sympy.physics.vector import dynamicsymbols
 
 from ..base.textsafe import html_text
-from .document import Math, Paragraph, Table, answers_blocks, inputs_tables
+from .blocks import Math, Paragraph, Table
+from .document import answers_blocks, inputs_tables
 from .html import _math as _mathml
 from .html import block_html as _report_block
 from .notation import latex, latex_condition

@@ -6,7 +6,7 @@ relative path); an animation cannot live in a PDF, so its first frame's GIF is n
 
 from __future__ import annotations
 
-from .document import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
+from .blocks import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
 from .notation import latex, latex_condition, latex_text
 
 PREAMBLE = r"""\documentclass[11pt,a4paper]{article}

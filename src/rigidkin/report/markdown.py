@@ -11,7 +11,7 @@ from __future__ import annotations
 import base64
 
 from ..base.textsafe import markdown_text
-from .document import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
+from .blocks import Animation, Document, Equations, Figure, Math, Paragraph, Step, Table
 from .notation import latex, latex_condition
 
 

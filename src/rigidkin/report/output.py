@@ -11,7 +11,11 @@ from pathlib import Path
 
 from ..base.errors import InputError
 from ..base.textsafe import safe_filename
-from .document import Animation, Document, Figure, build_document
+from .blocks import Animation, Document, Figure
+from .document import build_document
+from .html import to_html
+from .latex import to_latex
+from .markdown import to_markdown
 
 FORMATS = {".html": "html", ".htm": "html", ".md": "markdown", ".markdown": "markdown", ".tex": "latex"}
 
@@ -27,16 +31,10 @@ def format_of(path) -> str:
 def render(doc: Document, fmt: str, files: dict | None = None) -> str:
     """The document as text in ``fmt`` ("html", "markdown" or "latex")."""
     if fmt == "html":
-        from .html import to_html
-
         return to_html(doc)
     if fmt == "markdown":
-        from .markdown import to_markdown
-
         return to_markdown(doc, files)
     if fmt == "latex":
-        from .latex import to_latex
-
         return to_latex(doc, files)
     raise InputError(f"unknown report format '{fmt}'.", hint="Use html, markdown or latex.")
 

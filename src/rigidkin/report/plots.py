@@ -19,7 +19,9 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from ..base.printing import greek  # noqa: E402
 from ..base.textsafe import figure_text  # noqa: E402
-from .document import Animation, Figure, Paragraph, Table  # noqa: E402
+from ..numeric.figure import _plain_text  # noqa: E402
+from .animate import animate  # noqa: E402
+from .blocks import Animation, Figure, Paragraph, Table  # noqa: E402
 
 _UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s")}
 
@@ -29,8 +31,6 @@ def png(fig, dpi: int = 100) -> bytes:
     try:
         fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
     except ValueError:                       # a title mathtext cannot parse: drawn as the plain text it is
-        from ..numeric.figure import _plain_text
-
         _plain_text(fig)
         buf = io.BytesIO()
         fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
@@ -107,8 +107,6 @@ def simulation_blocks(result, solution=None, figures: bool = True, animation: bo
     out.append(Figure("phase-portrait", png(fig), "Phase portrait of each coordinate: start ○, end ■, events ◆ "
                                                    "numbered as in the events table.", "phase portrait"))
     if animation and solution is not None:
-        from .animate import animate
-
         anim = animate(solution.system, result, frames=frames)
         try:
             out.append(Animation("motion", anim.to_jshtml(), anim.gif_bytes() if gif else None,
