@@ -20,7 +20,7 @@ import pytest
 import sympy as sp
 
 from rigidkin.cli import main
-from rigidkin.commands import common
+from rigidkin.commands import sweep as sweep_command
 from rigidkin.io import derivation_cache as dc
 from rigidkin.numeric.sweeps import exprtree
 
@@ -74,7 +74,7 @@ def _sweep(capsys, out, *extra, problem="ladder"):
 def _no_derivation(monkeypatch):
     def refuse(args):
         raise AssertionError("the problem was read and derived")
-    monkeypatch.setattr(common, "open_problem", refuse)
+    monkeypatch.setattr(sweep_command, "open_problem", refuse)
 
 
 def _release_angles(path) -> tuple[np.ndarray, np.ndarray]:
@@ -115,8 +115,8 @@ def test_record_route_values_and_end_time(cache, tmp_path, capsys, monkeypatch):
 
 def test_what_the_record_cannot_answer_takes_the_full_route(cache, tmp_path, capsys, monkeypatch):
     assert _sweep(capsys, tmp_path / "seed.csv")[0] == 0
-    calls, real = [], common.open_problem
-    monkeypatch.setattr(common, "open_problem", lambda args: calls.append(1) or real(args))
+    calls, real = [], sweep_command.open_problem
+    monkeypatch.setattr(sweep_command, "open_problem", lambda args: calls.append(1) or real(args))
     assert _sweep(capsys, tmp_path / "unit.csv", "--set", "g=370 cm/s^2")[0] == 0   # a unit: parsed in full
     assert len(calls) == 1
     rc, said = _sweep(capsys, tmp_path / "bad.csv", "--set", "nonesuch=1")
