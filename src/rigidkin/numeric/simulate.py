@@ -26,8 +26,9 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.errors import InputError
 from ..model.constraints import Coulomb
 from .contacts.contact_modes import confirm, decide
-from .contacts.modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
+from .contacts.modes import Hybrid
 from .contacts.transition import transition as _transition
+from .contacts.vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode
 from .large.tree import NotATree
 from .result import Event, Segment, SimulationResult, build_result
 from .rhs import RHS, SimulationError, compile_functions
