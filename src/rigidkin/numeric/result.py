@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..base import display
-from ..base.outfile import writing
+from ..base.outfile import write_text, writing
 from ..base.textsafe import safe_csv_cell
 from .figure import plot_result
 from .rhs import SimulationError
@@ -185,8 +185,6 @@ class SimulationResult:
             buf.write(chunk)
         text = buf.getvalue()
         if path is not None:
-            from ..base.outfile import write_text
-
             write_text(path, text, "the histories")
         return text
 

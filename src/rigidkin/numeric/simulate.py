@@ -27,8 +27,10 @@ from ..base.errors import InputError
 from ..derive.derivation import derivation_of
 from ..model.constraints import Coulomb
 from .contacts.contact_modes import confirm, decide
-from .contacts.modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode
+from .contacts.modes import Hybrid
 from .contacts.transition import transition as _transition
+from .contacts.vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode
+from .large.route import numeric_route, simulate_tree
 from .large.tree import NotATree
 from .result import Event, Segment, SimulationResult, build_result
 from .rhs import RHS, SimulationError, compile_functions
@@ -223,8 +225,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     max_step = (t1 - t0) / 100 if max_step is None else float(max_step)   # no event hides inside one step
     if method not in METHODS:
         raise InputError(f"unknown integration method '{method}'.", where="simulate", hint=f"Use {', '.join(METHODS)}.")
-    from .large.route import numeric_route, simulate_tree  # past the symbolic limit: a tree of pins goes numeric
-
+    # past the symbolic limit: a tree of pins goes numeric
     tree = numeric_route(system) if not phases and not mode else None
     if tree is not None:
         try:

@@ -1,11 +1,8 @@
 """Generated code: the equations of one regime of one mode as compiled C, or numpy without a compiler.
 
-A :class:`Kernel` is the numeric content of a regime, in plain symbols of the state layout
-(t, q…, q̇…, parameters…): the unknowns X (the independent accelerations q̈_i and the reactions),
-given either explicitly (X = b, the Solution's solved expressions) or implicitly (A·X = b, the
-balance equations before the symbolic solve, solved numerically by LU at every call); the rates
-dy/dt = (q̇, q̈) of every coordinate (dependent ones through the constraints' rate and acceleration
-relations) and named outputs (the reactions and any event function).
+``kernel`` reads the :class:`~rigidkin.numeric.compiled.kernel.Kernel` of a regime from a system: its
+unknowns (the independent accelerations and the reactions), explicit (the Solution's solved expressions),
+in mass-matrix form (M q̈ = f) or implicit (the balance equations A·X = b), its rates and named outputs.
 
 ``compile_kernel`` turns it into one C file (:mod:`rigidkin.numeric.compiled.csource`: common subexpressions
 eliminated with ``sympy.cse``, small integer powers as products, our own names only — no user text),
@@ -19,108 +16,32 @@ caller keeps working, only slower.
 
 from __future__ import annotations
 
-import hashlib
 import itertools
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
 
 import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ...base.errors import RigidkinError
 from ...base.trace import Trace
 from ...derive.derivation import derivation_of
+from ...derive.kinematics import linear_form
 from ...derive.laws import newton_euler
+from ...derive.mode import setup_mode
+from ...derive.solution import _determinacy
+from ..rhs import SimulationError
 from ..state import StateLayout, parameter_vector
+from .batch import INTEGRATOR_C, INTEGRATOR_CDEF
 from .cache import _LOADED, build, cache_dir, compiler  # noqa: F401  (cache_dir, _LOADED: public through here)
 from .codesafe import safe_lambdify
 from .csource import _CDEF, c_source  # noqa: F401  (c_source, _CDEF: public through here)
+from .kernel import CODE_VERSION, CodegenError, Kernel, check_free  # noqa: F401  (public through here)
 
 t = dynamicsymbols._t
 
-#: Version of the generated code: part of every cache key.
-CODE_VERSION = "3"
 BACKENDS = ("auto", "c", "numpy")
 FORMS = ("auto", "explicit", "mass-matrix", "implicit")
-
-
-class CodegenError(RigidkinError):
-    """Code could not be generated or compiled for a model."""
-
-
-# ---------------------------------------------------------------------------------------------------
-# the kernel: what code is generated from
-@dataclass(frozen=True, eq=False)
-class Kernel:
-    """The numeric content of one regime of one mode (plain symbols; see the module docstring)."""
-
-    layout: StateLayout
-    unknowns: tuple[sp.Symbol, ...]        # X: q̈_i (named ddot(q)) then reactions
-    unknown_names: tuple[str, ...]
-    A: sp.Matrix | None                    # None: explicit (X = b)
-    b: tuple[sp.Expr, ...]
-    rates: tuple[sp.Expr, ...]             # dy/dt, 2n expressions of args and X
-    outputs: tuple[sp.Expr, ...]           # of args and X
-    output_names: tuple[str, ...]
-    label: str = ""
-    M: sp.Matrix | None = None             # mass-matrix form of the rates: M·q̈_i = f (reactions from A, b)
-    f: tuple[sp.Expr, ...] = ()
-    _cache: dict = field(default_factory=dict, repr=False)
-
-    @property
-    def args(self) -> list:
-        if "args" not in self._cache:
-            self._cache["args"] = self.layout.arguments()
-        return self._cache["args"]
-
-    @property
-    def form(self) -> str:
-        return "explicit" if self.A is None else ("mass-matrix" if self.M is not None else "implicit")
-
-    @property
-    def ny(self) -> int:
-        return len(self.args) - 1 - self.np_
-
-    @property
-    def np_(self) -> int:
-        return len(self.layout.parameter_symbols)
-
-    def with_outputs(self, names: Sequence[str], exprs: Sequence[sp.Expr]) -> Kernel:
-        """The same kernel with further named outputs (expressions of the state and parameters)."""
-        exprs = [self.layout.to_plain(sp.sympify(e)) for e in exprs]
-        _check_free(self, exprs)
-        return Kernel(self.layout, self.unknowns, self.unknown_names, self.A, self.b, self.rates,
-                      self.outputs + tuple(exprs), self.output_names + tuple(names), self.label, self.M, self.f)
-
-    def key(self) -> str:
-        """A hash of the model's numeric content (the cache key of its generated code)."""
-        if "key" not in self._cache:
-            h = hashlib.sha256(CODE_VERSION.encode())
-            for part in (self.args, self.unknowns, self.A, self.b, self.rates, self.outputs, self.M, self.f):
-                h.update(sp.srepr(part).encode())
-            self._cache["key"] = h.hexdigest()[:24]
-        return self._cache["key"]
-
-    def output_index(self, name: str) -> int:
-        try:
-            return self.output_names.index(name)
-        except ValueError:
-            raise CodegenError(f"'{name}' is not an output of this model.", where=self.label,
-                               hint=f"Outputs: {', '.join(self.output_names) or 'none'}.") from None
-
-
-def _check_free(kernel: Kernel, exprs) -> None:
-    from ...model.definitions import expand  # derived quantities by their definitions
-
-    allowed = set(kernel.args) | set(kernel.unknowns)
-    extra = set().union(*[expand(sp.sympify(e)).free_symbols for e in exprs]) - allowed if exprs else set()
-    if extra:
-        raise CodegenError(f"the expressions contain {', '.join(sorted(map(str, extra)))}, which is neither a "
-                           "coordinate, a rate, time nor a parameter, so no code can be generated for them.",
-                           where=kernel.label,
-                           hint="Every quantity in a model must be a parameter, a coordinate or a function of time.")
 
 
 def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "auto") -> Kernel:
@@ -139,8 +60,6 @@ def kernel(system, mode: Mapping | None = None, regime: int = 0, form: str = "au
     key = (tuple(sorted(mode.items())), regime, form)
     if (kept := derivation_of(system).kernel(key)) is not None:
         return kept
-    from ...derive.mode import setup_mode
-
     setup = setup_mode(system, mode)
     if form == "auto":
         reg = system.solve(mode=mode).regime(regime)
@@ -187,14 +106,11 @@ def _explicit(system, setup, mode, regime) -> Kernel:
     outputs = X[len(red.independent):]
     k = Kernel(layout, tuple(X), tuple(names), None, tuple(b), tuple(rates), tuple(outputs),
                tuple(names[len(red.independent):]), label=system.name)
-    _check_free(k, [*b, *rates])
+    check_free(k, [*b, *rates])
     return k
 
 
 def _mass_matrix(system, setup, mode, regime) -> Kernel:
-    from ...derive.kinematics import linear_form
-    from ...derive.solution import _determinacy
-
     sol = system.solve(mode=mode)
     reg = sol.regime(regime)
     red = setup.reduction
@@ -213,14 +129,11 @@ def _mass_matrix(system, setup, mode, regime) -> Kernel:
                tuple(rates), tuple(X[n_acc:]) + (sp.Integer(0),) * len(absent),
                tuple(names[n_acc:]) + tuple(str(r) for r in absent), label=system.name,
                M=reg.mass_matrix.applyfunc(layout.to_plain), f=tuple(layout.to_plain(e) for e in reg.forcing))
-    _check_free(k, [*k.A, *k.b, *rates, *k.M, *k.f])
+    check_free(k, [*k.A, *k.b, *rates, *k.M, *k.f])
     return k
 
 
 def _implicit(system, setup, regime) -> Kernel:
-    from ...derive.kinematics import linear_form
-    from ...derive.solution import _determinacy
-
     red = setup.reduction
     saved, setup.trace = setup.trace, Trace(law="codegen")
     try:
@@ -248,7 +161,7 @@ def _implicit(system, setup, regime) -> Kernel:
     k = Kernel(layout, tuple(X), tuple(names) + tuple(str(r) for r in absent),
                A.applyfunc(layout.to_plain), tuple(layout.to_plain(e) for e in b), tuple(rates), tuple(outputs),
                tuple(names[n_acc:]) + tuple(str(r) for r in absent), label=system.name)
-    _check_free(k, [*k.A, *k.b, *rates])
+    check_free(k, [*k.A, *k.b, *rates])
     return k
 
 
@@ -285,8 +198,6 @@ class CompiledModel:
         self.ffi = self.lib = None
         if backend in ("auto", "c"):
             if c_available():
-                from .batch import INTEGRATOR_C, INTEGRATOR_CDEF
-
                 self.ffi, self.lib = _build(c_source(kernel) + INTEGRATOR_C, _CDEF + INTEGRATOR_CDEF)
             elif backend == "c":
                 raise CodegenError("no C compiler (or the cffi package) is available here.",
@@ -447,8 +358,6 @@ class FastRHS:
             dy = m.rhs(t_, y, self.params)
             code = not np.all(np.isfinite(dy))
         if code:
-            from ..rhs import SimulationError
-
             state = ", ".join(f"{k} = {v:.6g}" for k, v in self.layout.as_dict(y).items())
             raise SimulationError(f"the equations of motion give a non-finite rate at t = {t_:.10g} ({state}).",
                                   where=m.kernel.label or "simulation",

@@ -23,6 +23,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from ...base.errors import RigidkinError
+from ...model.definitions import expand
 
 
 class UnsafeCodeError(RigidkinError):
@@ -46,8 +47,6 @@ def check_expressions(exprs: Iterable, symbols: Iterable[sp.Symbol] | None = Non
     not control), and none of the kinds whose printed form carries a name (undefined functions, matrix
     symbols, strings, derivatives, integrals, lambdas).  With ``symbols``, every symbol must be one of them.
     """
-    from ...model.definitions import expand
-
     allowed = set(symbols) if symbols is not None else None
     # derived quantities (a = √(R² − l²)) by their definitions
     out = [expand(sp.sympify(e)) for e in exprs]

@@ -1,4 +1,4 @@
-"""The C source of a kernel (:class:`rigidkin.numeric.compiled.codegen.Kernel`): our own names only.
+"""The C source of a kernel (:class:`rigidkin.numeric.compiled.kernel.Kernel`): our own names only.
 
 Every symbol is printed as one of our names (``T``, ``y[i]``, ``p[j]``, ``X[k]``; CSE temporaries ``w…``,
 ``v…``), every expression is checked before printing and every statement audited after
@@ -8,15 +8,11 @@ eliminated with ``sympy.cse``; small integer powers are written as products.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import sympy as sp
 from sympy.printing.c import C99CodePrinter
 
 from .codesafe import UnsafeCodeError, audit_c, check_expressions
-
-if TYPE_CHECKING:
-    from .codegen import Kernel
+from .kernel import Kernel
 
 
 class _Printer(C99CodePrinter):

@@ -29,8 +29,10 @@ import sympy as sp
 
 from ...model.constraints import ROLLING, SMOOTH, Coulomb
 from ..rhs import SimulationError
-from .modes import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, look_ahead
+from .mode_model import look_ahead
+from .settle import held_alternative
 from .slip3d import friction_needed, slip_speed
+from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode
 
 
 class ContactParadox(SimulationError):
@@ -88,8 +90,6 @@ def check(hyb, mode: dict, forced: dict, names, t_, y, p, zero: float, force_tol
     try:
         sol = hyb.solution(mode)
     except ModeUnavailable as exc:
-        from .settle import held_alternative
-
         alt = held_alternative(hyb, mode) if any(v == STICK for v in mode.values()) else None
         if alt is None:
             return False, None, mode, exc.message

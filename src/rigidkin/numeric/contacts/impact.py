@@ -25,7 +25,8 @@ from ...derive.kinematics import linear_form
 from ...model.constraints import ROLLING, SMOOTH, Coulomb
 from ..rhs import SimulationError, compile_functions
 from .contact_lcp import ContactRows, NoImpulseSolution, impulse_problem
-from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable, describe_mode, mode_key
+from .modes import Hybrid
+from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, mode_key
 
 t = dynamicsymbols._t
 

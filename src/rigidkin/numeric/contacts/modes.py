@@ -18,182 +18,26 @@ within µN where it sticks, slip directions whose slip-speed rate has the slip's
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ...base.errors import ModelError, RigidkinError
+from ...base import algebra
+from ...base.errors import ModelError
 from ...base.printing import text as show
 from ...derive.derivation import derivation_of
 from ...derive.laws.energy import kinetic_energy, nonconservative_power, potential_energy
+from ...derive.laws.newton_euler import body_balances
+from ...derive.mode import setup_mode
 from ...model.constraints import ROLLING, SMOOTH, Contact, Coulomb
 from ..rhs import RegimeFunctions, compile_functions
 from ..state import StateLayout
+from .mode_model import ModeModel, Watch
+from .settle import regime_at, settle
+from .slip3d import expand
+from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, mode_key
 
 t = dynamicsymbols._t
-
-OPEN, SLIP, STICK = "open", "slip", "stick"
-
-
-class ModeUnavailable(RigidkinError):
-    """A mode the motion needs cannot be derived from the model (e.g. no coordinate lets a contact open)."""
-
-
-def mode_key(mode: dict) -> tuple:
-    return tuple(sorted(mode.items()))
-
-
-def describe_mode(system, mode: dict) -> str:
-    """``A open, B closed (smooth)``: the contacts' states in words."""
-    words = []
-    for name, st in sorted(mode.items()):
-        c = system.constraints[name]
-        if st == OPEN:
-            words.append(f"{name} open")
-        elif st == STICK:
-            words.append(f"{name} rolling" if c.radius != 0 else f"{name} sticking")
-        elif c.friction == SMOOTH:
-            words.append(f"{name} closed")
-        else:
-            words.append(f"{name} slipping")
-    return ", ".join(words) or "no contacts"
-
-
-def look_ahead(t_: float, y: np.ndarray, f: np.ndarray) -> tuple[float, np.ndarray]:
-    """(h, y + h f): a short explicit step along the rates ``f`` (of the first len(f) state slots) that moves
-    the state by a relative 1e-7, and never more than a microsecond's worth — at rest on a threshold the rates
-    are round-off (1e-15), and a step sized by them alone would be years long (a pushed box as it tips)."""
-    n = len(f)
-    h = min(1e-7 * (1.0 + float(np.max(np.abs(y[:n])))) / max(float(np.max(np.abs(f))), 1e-300),
-            1e-6 * (1.0 + abs(float(t_))))
-    y2 = np.array(y, dtype=float)
-    y2[:n] = y2[:n] + h * f
-    return h, y2
-
-
-@dataclass(frozen=True)
-class Watch:
-    """A quantity of the state whose zero ends a regime, and what that zero means."""
-
-    kind: str            # "opens", "impact", "sticks", "slips", "reverses"
-    name: str            # the contact or load
-    label: str           # e.g. "contact A opens"
-    direction: int       # the sign of the crossing that counts (solve_ivp's convention)
-    slip_sign: int = 0   # "slips": the sign σ of the slip that begins
-    quantity: str = ""   # the watched quantity, as a person reads it
-
-
-class _Only:
-    """A view of a ModeModel restricted to some of its conditions."""
-
-    def __init__(self, model, conditions):
-        self._m, self.conditions = model, conditions
-
-    def __getattr__(self, name):
-        return getattr(self._m, name)
-
-
-@dataclass
-class ModeModel:
-    """Numeric functions of one regime of one mode (parameters passed at call time).
-
-    ``functions`` (a :class:`RegimeFunctions`) evaluates, at a state, the rates, the reactions and
-    the quantities [P_nc, watches…, constraint gaps…, T, U, friction forces and limits…].
-    ``conditions`` are the regime's sign conditions: (watch index, ">" or "<").
-    """
-
-    system: object
-    mode: dict
-    regime_index: int
-    solution: object
-    layout: StateLayout
-    functions: RegimeFunctions
-    watches: list
-    conditions: list
-    residual_names: list
-    friction_names: list
-    conservative: bool
-    steady: frozenset = frozenset()   # watches that cannot change: a mode at rest, no explicit time
-
-    @property
-    def regime(self):
-        return self.solution.regime(self.regime_index)
-
-    @property
-    def description(self) -> str:
-        words = describe_mode(self.system, self.mode)
-        conds = [f"{self.watches[wi].quantity} {rel} 0" for wi, rel in self.conditions]
-        return words + (f" ({', '.join(conds)})" if conds else "")
-
-    def _q(self, t_, y, p):
-        return self.functions.evaluate(t_, y, p)
-
-    def rates(self, t_, y, p) -> np.ndarray:
-        """dy/dt of (q, q̇) and of the work of non-conservative loads and reactions."""
-        dy, _, q = self._q(t_, y, p)
-        return np.concatenate([dy, q[:1]])
-
-    def reactions(self, t_, y, p) -> dict:
-        return dict(self._q(t_, y, p)[1])
-
-    def watch_values(self, t_, y, p) -> np.ndarray:
-        return self._q(t_, y, p)[2][1:1 + len(self.watches)]
-
-    def residuals(self, t_, y, p) -> dict:
-        q = self._q(t_, y, p)[2]
-        nw = len(self.watches)
-        return dict(zip(self.residual_names, map(float, q[1 + nw:1 + nw + len(self.residual_names)])))
-
-    def energy(self, t_, y, p) -> tuple[float, float]:
-        q = self._q(t_, y, p)[2]
-        i = 1 + len(self.watches) + len(self.residual_names)
-        return float(q[i]), float(q[i + 1])
-
-    def condition_holds(self, t_, y, p, zero: float) -> bool | None:
-        """Whether the regime's conditions hold strictly at the state (None: one of them is zero there)."""
-        w = self.watch_values(t_, y, p)
-        for wi, rel in self.conditions:
-            v = float(w[wi])
-            if abs(v) <= zero:
-                return None
-            if (v > 0) != (rel == ">"):
-                return False
-        return True
-
-    def leaves_zero_consistently(self, t_, y, p, zero: float) -> bool:
-        """At a state where some condition is zero: does the motion of this regime make them all hold?
-
-        A short explicit step along this regime's own rates shows the sign each condition takes.
-        """
-        y = np.asarray(y, dtype=float)
-        n = 2 * self.layout.n
-        f = self.rates(t_, y, p)[:n]
-        h, y2 = look_ahead(t_, y, f)
-        w0, w1 = self.watch_values(t_, y, p), self.watch_values(t_ + h, y2, p)
-        for wi, rel in self.conditions:
-            v = float(w0[wi]) if abs(float(w0[wi])) > zero else float(w1[wi])
-            if v == 0.0 or (v > 0) != (rel == ">"):
-                return False
-        return True
-
-    def evaluate(self, times: np.ndarray, ys: np.ndarray, p) -> dict:
-        """The reactions, constraint gaps, T, U and friction forces at many states (arrays), by name."""
-        reactions = {k: np.empty(len(times)) for k in self.functions.reaction_names}
-        nw, ns = len(self.watches), len(self.residual_names)
-        res = np.empty((ns, len(times)))
-        T, U = np.empty(len(times)), np.empty(len(times))
-        fr = np.empty((len(self.friction_names), len(times)))
-        for j, tt in enumerate(times):
-            _, r, q = self._q(float(tt), ys[:, j], p)
-            for k, v in r.items():
-                reactions[k][j] = v
-            res[:, j] = q[1 + nw:1 + nw + ns]
-            T[j], U[j] = q[1 + nw + ns], q[2 + nw + ns]
-            fr[:, j] = q[3 + nw + ns:]
-        return {"reactions": reactions, "residuals": dict(zip(self.residual_names, res)), "T": T, "U": U,
-                "frictions": dict(zip(self.friction_names, fr))}
 
 
 class Hybrid:
@@ -216,9 +60,7 @@ class Hybrid:
         """The Solution of ``mode`` (every contact named), or ModeUnavailable with the model's reason."""
         key = mode_key(mode)
         if key not in self._solutions:
-            try:
-                from .slip3d import expand  # 3D slip: the direction relative to a reference tangent
-
+            try:              # 3D slip: the direction relative to a reference tangent (slip3d.expand)
                 self._solutions[key] = expand(self.system.solve(mode=dict(mode), integrate=False))
             except ModelError as exc:   # ConstraintError included
                 self._solutions[key] = ModeUnavailable(
@@ -393,8 +235,6 @@ class Hybrid:
                 exprs.append(red.rate_map[q.diff(t)])
             relations = dict(sol.relations)
             if integrated:
-                from ...derive.mode import setup_mode
-
                 relations = dict(setup_mode(self.system, dict(mode)).reduction.coord_map)
             rel_slots = [lay.coordinates.index(q) for q in relations]
             rel_fn = compile_functions(lay.arguments(), [lay.to_plain(v) for v in relations.values()])
@@ -473,9 +313,6 @@ class Hybrid:
     def _depends_on(self, mode: dict, q) -> bool:
         key = (mode_key(mode), q)
         if key not in self._depends:
-            from ...base import algebra
-            from ...derive.laws.newton_euler import body_balances
-
             setup = self.solution(mode).setup
             F = setup.kin.F
             dep = False
@@ -492,15 +329,11 @@ class Hybrid:
     # choosing a consistent mode (numeric/settle.py) ---------------------------------------------------
     def regime_at(self, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: float = 1e-9) -> int:
         """The regime of ``mode`` whose conditions hold at the state (see :func:`settle.regime_at`)."""
-        from .settle import regime_at
-
         return regime_at(self, mode, t_, y, p, forced, zero_tol)
 
     def settle(self, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: float = 1e-9,
                force_tol: float = 1e-9) -> tuple[dict, int, list[str]]:
         """The consistent (mode, regime) at a state, starting from ``mode`` (see :func:`settle.settle`)."""
-        from .settle import settle
-
         return settle(self, mode, t_, y, p, forced, zero_tol, force_tol)
 
     def _param_value(self, expr, p) -> float:

@@ -14,8 +14,9 @@ import numpy as np
 
 from ...model.constraints import Coulomb
 from ..rhs import SimulationError
-from .modes import OPEN, SLIP, STICK, ModeModel, ModeUnavailable, _Only, describe_mode, mode_key
+from .mode_model import ModeModel, _Only
 from .slip3d import friction_needed, slip_speed, start_direction
+from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, mode_key
 
 
 def regime_at(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: float = 1e-9) -> int:

@@ -38,10 +38,10 @@ import numpy as np
 import sympy as sp
 
 from ...derive.regime import Condition, Deferred, LazyMap, Regime
-from ...model.friction3d import SlidingFriction3D, referenced_direction
+from ...model.friction3d import SlidingFriction3D, referenced_direction, slip_components
 from ...model.loads import SignChoice
 from ..rhs import compile_functions
-from .modes import SLIP
+from .vocabulary import SLIP
 
 #: Suffixes of the load names under which a contact's bookkeeping choices are sign choices: κ (which
 #: tangent is the reference) and ζ (whether the slip is slow enough to need a reference at all).
@@ -137,8 +137,6 @@ def slip_speed(hyb, name: str, t_, y, p) -> float:
     key = ("slip3d", name)
     if key not in hyb._contact_fns:
         c, kin = hyb.contacts[name], hyb.kin
-        from ...model.friction3d import slip_components
-
         s1, s2 = slip_components(kin, c.relative_velocity(kin), c.normal(kin))
         lay = hyb.layout
         hyb._contact_fns[key] = compile_functions(lay.arguments(), [lay.to_plain(s1), lay.to_plain(s2)])

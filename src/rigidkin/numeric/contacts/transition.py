@@ -16,8 +16,9 @@ from ...model.constraints import SMOOTH, Coulomb
 from ..result import Event
 from ..rhs import SimulationError
 from .impact import impact, mode_after
-from .modes import OPEN, SLIP, STICK, Hybrid, ModeUnavailable
+from .modes import Hybrid
 from .slip3d import SLOW, SPEED, contact_of, nudge, start_direction
+from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable
 
 
 def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):

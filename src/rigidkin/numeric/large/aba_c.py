@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..compiled.cache import build, compiler
+
 CDEF = """
 typedef struct {
   int E, nb, nn, n, ne, nnz, plan;
@@ -153,8 +155,6 @@ def _library():
     if not _LIB:
         try:
             import cffi  # noqa: F401
-
-            from ..compiled.cache import build, compiler
 
             _LIB.append(build(SOURCE, CDEF) if compiler() is not None else None)
         except Exception:          # no compiler, no cffi, a cache that refuses: the numpy version is used

@@ -24,12 +24,12 @@ forces the joints transmit, f = I^A a + p^A.
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ..rhs import compile_functions
 from ..state import StateLayout
+from .aba_c import compiled
 from .tree import NotATree, Tree, node_coefficients, read_tree
 
 t = dynamicsymbols._t
@@ -226,8 +226,6 @@ class ArticulatedModel:
         num["first"] = {jt.nodes[0]: j for j, jt in enumerate(tr.joints) if jt.nodes}
         num["c"] = None
         if self.use_c and not tr.applications:      # gravity only: the whole step in C (numeric/aba_c.py)
-            from .aba_c import compiled
-
             num["c"] = compiled(num, n)
         return num
 
@@ -240,6 +238,8 @@ class ArticulatedModel:
             cols = [i for i in np.nonzero(C[k])[0]]
             new = [i for i in cols if i not in seen]
             if len(new) != 1:
+                import scipy.linalg as sla  # here: importing the route (and simulate) loads no scipy
+
                 lu = sla.lu_factor(C)
                 return (lambda psi_dd, lu=lu: sla.lu_solve(lu, psi_dd)), None
             i = new[0]

@@ -24,7 +24,7 @@ Only small symbolic pieces are built (partial velocities, remainder acceleration
 and their derivatives); ``sympy.lambdify`` with common-subexpression elimination turns them into one
 numeric function (numpy for simulation, mpmath for high-precision linearisation).  Holonomic
 constraints among the rows (a gap that must stay zero, e.g. the front wheel touching the ground)
-fix their dependent coordinates at any configuration by Newton's method.
+fix their dependent coordinates at any configuration by Newton's method (:mod:`rigidkin.numeric.large.closure`).
 """
 
 from __future__ import annotations
@@ -41,6 +41,8 @@ from ...base import algebra, vectorops
 from ...base.errors import ConstraintError, ModelError, RigidkinError
 from ...derive.kinematics import Kinematics, linear_form
 from ...model.speeds import STABILISATION, speeds_of
+from ..compiled.codegen import c_backend
+from .closure import configuration, holonomic_coordinates
 from .linearise import linearise, state_matrix
 from .projected_assembly import _full_rates, _partials, _project, _vec
 
@@ -256,8 +258,6 @@ class ProjectedModel:
         if key not in self._fn:
             pieces = list(self._pieces) if level == "all" else [self._pieces[i] for i in (-5, -4, -2, -1)]
             if kind == "c":
-                from ..compiled.codegen import c_backend
-
                 shapes = [P.shape for P in pieces]
                 flat_fn = c_backend(self._args, [e for P in pieces for e in P])
 
@@ -425,56 +425,12 @@ class ProjectedModel:
 
     # configuration --------------------------------------------------------------------------------
     def holonomic_coordinates(self) -> tuple:
-        """The dependent coordinates that the gaps fix (one per gap), found from the gaps' Jacobian."""
-        if not self._n_gaps:
-            return ()
-        rng = random.Random(2)
-        q = [rng.uniform(0.1, 0.3) for _ in self.coordinates]
-        _, J = self.gaps(q)
-        J = np.atleast_2d(J)
-        chosen: list[int] = []
-        # the coordinates whose rate is a dependent speed first, then those whose speeds are replaced
-        named = [self.coordinates.index(self._speed_names[i]) for i in self.dependent_index
-                 if self._speed_names[i] in self.coordinates]
-        free = set(self.independent)
-        named += [i for i in range(len(self.coordinates)) if i not in named and self.coordinates[i] not in free
-                  and self.coordinates[i] in self.kinematic.replaced]
-        for i in reversed(named):
-            trial = chosen + [i]
-            if np.linalg.matrix_rank(J[:, trial], tol=1e-9) == len(trial):
-                chosen = trial
-            if len(chosen) == self._n_gaps:
-                break
-        if len(chosen) < self._n_gaps:
-            raise ConstraintError("the holonomic constraints do not fix any set of dependent coordinates.",
-                                  where=self.system.name)
-        return tuple(sorted(chosen))
+        """The dependent coordinates the gaps fix: see :func:`rigidkin.numeric.large.closure.holonomic_coordinates`."""
+        return holonomic_coordinates(self)
 
     def configuration(self, q, kind: str = "numpy", values=None, tol=None, max_iter: int = 50):
-        """``q`` with the holonomic dependent coordinates corrected (Newton) so that every gap vanishes."""
-        idx = self.holonomic_coordinates()
-        if not idx:
-            return list(q)
-        q = list(q)
-        tol = tol if tol is not None else (1e-14 if kind != "mpmath" else mpmath.mpf(10) ** (-mpmath.mp.dps + 5))
-        for _ in range(max_iter):
-            g, J = self.gaps(q, kind=kind, values=values)
-            if kind == "mpmath":
-                Jd = mpmath.matrix([[J[r, c] for c in idx] for r in range(len(idx))])
-                dq = mpmath.lu_solve(Jd, g)
-                step = max(abs(x) for x in dq)
-                for k, i in enumerate(idx):
-                    q[i] -= dq[k]
-            else:
-                J = np.atleast_2d(J)
-                dq = np.linalg.solve(J[:, idx], np.ravel(g))
-                step = float(np.abs(dq).max())
-                for k, i in enumerate(idx):
-                    q[i] = q[i] - dq[k]
-            if step < tol:
-                return q
-        raise RigidkinError("Newton's method did not close the holonomic constraints.", where=self.system.name,
-                            hint="Start from a configuration closer to one the constraints allow.")
+        """``q`` with every gap closed (Newton): see :func:`rigidkin.numeric.large.closure.configuration`."""
+        return configuration(self, q, kind, values, tol, max_iter)
 
     # checks -------------------------------------------------------------------------------------
     def _check_workless(self) -> None:

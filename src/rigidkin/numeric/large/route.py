@@ -12,7 +12,6 @@ with the equations of motion evaluated numerically at each step by the articulat
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ...derive.derivation import derivation_of
 from ..result import Segment, build_result
@@ -84,6 +83,8 @@ def simulate_tree(system, model: ArticulatedModel, t_span: tuple[float, float], 
         y[i] = v
     max_step = (t1 - t0) / 100 if max_step is None else float(max_step)
     rhs = RHS(model.rates, lay, p, label=system.name, progress=(lambda tt: progress(tt, t1)) if progress else None)
+    from scipy.integrate import solve_ivp  # here: importing the route (and simulate) stays quick
+
     try:
         sol = solve_ivp(rhs, (t0, t1), y, method=method, rtol=rtol, atol=atol, dense_output=True, max_step=max_step)
     except (ValueError, ZeroDivisionError, FloatingPointError) as exc:

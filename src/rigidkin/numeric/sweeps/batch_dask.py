@@ -17,7 +17,8 @@ import numpy as np
 from ...base.errors import RigidkinError
 from ..compiled import batch
 from ..compiled.batch import INTEGRATOR_C, INTEGRATOR_CDEF
-from ..compiled.codegen import _CDEF, Kernel, _build, c_available, c_source
+from ..compiled.codegen import _CDEF, _build, c_available, c_source
+from ..compiled.kernel import Kernel
 
 
 def _chunk_task(code: tuple[str, str], y0, P, t_span, events, rtol, atol, max_step, max_steps):

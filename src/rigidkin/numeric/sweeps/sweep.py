@@ -12,6 +12,7 @@ local sweep, run for run, because every run is integrated by the same generated 
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -24,11 +25,14 @@ from ...base.errors import InputError, RigidkinError
 from ...derive.mode import setup_mode
 from ..compiled import batch
 from ..compiled.batch import INTEGRATOR_C, INTEGRATOR_CDEF
-from ..compiled.codegen import CompiledModel, Kernel, compile_kernel, kernel
+from ..compiled.codegen import CompiledModel, compile_kernel, kernel
+from ..compiled.codesafe import safe_lambdify
 from ..compiled.csource import _CDEF, c_source
+from ..compiled.kernel import Kernel
 from ..state import StateLayout, parameter_vector, quantity
+from .batch_dask import integrate_dask
 from .exprtree import NotEncodable, encode
-from .sweep_plan import _vector_eval, axis, axis_length, check_runs, complete, declared_state, runs_grid  # noqa: F401  (public here)
+from .sweep_plan import axis, axis_length, check_runs, complete, declared_state, runs_grid  # noqa: F401  (public here)
 from .sweep_record import make
 from .sweep_result import SweepResult, status_text  # noqa: F401  (public through here)
 
@@ -116,7 +120,7 @@ def plan(system, vary: Mapping | None = None, params: Mapping | None = None, ini
     inputs, P, Y = runs_grid(vary, base_p, y_base, layout.parameters, layout.labels, given, grid, unknown)
     if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
         raise InputError("the sweep's values are not all finite numbers.", where="sweep")
-    complete(Y, P, relations(system, mode, layout), given, layout.arguments())
+    complete(Y, P, relations(system, mode, layout), given, functools.partial(_vector_eval, layout.arguments()))
     return inputs, P, Y
 
 
@@ -155,6 +159,18 @@ def _condition_events(system, mode, regime: int, layout: StateLayout) -> list[St
         holds_positive = c.relation in (">", ">=")
         out.append(StopAt(name, layout.to_plain(c.expr), -1 if holds_positive else 1, True))
     return out
+
+
+#: lambdify's namespace: numpy's own functions (``modules="numpy"`` would star-import numpy's every submodule,
+#: a tenth of a second at each command's start).
+_NUMPY = ({"numpy": np}, np)
+
+
+def _vector_eval(args, expr, columns, runs) -> np.ndarray:
+    """``expr`` (of the layout's arguments) at every run at once."""
+    f = safe_lambdify(args, [expr], modules=list(_NUMPY), cse=False, where="sweep")
+    with np.errstate(all="ignore"):
+        return np.broadcast_to(np.asarray(f(*columns)[0], dtype=float), (runs,)).copy()
 
 
 def _assign_regimes(system, mode, layout: StateLayout, Y: np.ndarray, P: np.ndarray) -> np.ndarray:
@@ -251,8 +267,6 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
             if keep_record and n_regimes == 1 and used == "c":
                 kept = _record(system, mode, layout, k, bev)
         else:
-            from .batch_dask import integrate_dask
-
             res = integrate_dask(k, Y[idx], P[idx], (0.0, t_end), bev, rtol, atol, max_step, scheduler=scheduler,
                                  workers=workers, chunk=chunk, progress=sub_progress)
             used = "c (dask)"

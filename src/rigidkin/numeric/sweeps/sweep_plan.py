@@ -95,27 +95,14 @@ def runs_grid(vary, base_p, y_base, parameters, labels, given: set, grid: bool =
     return inputs, P, Y
 
 
-def complete(Y: np.ndarray, P: np.ndarray, rel: tuple[list, list], given: set, args=None) -> None:
+def complete(Y: np.ndarray, P: np.ndarray, rel: tuple[list, list], given: set, symbolic=None) -> None:
     """Each run's dependent coordinates, then rates, from the constraints (``relations``), in place; the slots
-    in ``given`` keep their values."""
+    in ``given`` keep their values.  A relation that is a tree is evaluated here; one that is still a sympy
+    expression (the full sweep's, where no tree could be made) by ``symbolic(expr, columns, runs)``."""
 
     runs = len(Y)
     cols = [np.zeros(runs), *Y.T, *P.T]          # views: each slot completed is seen by the next
     for i, expr in (*rel[0], *rel[1]):
         if i in given:
             continue
-        Y[:, i] = evaluate(expr, cols, runs) if isinstance(expr, list) else _vector_eval(args, expr, cols, runs)
-
-
-#: lambdify's namespace: numpy's own functions (``modules="numpy"`` would star-import numpy's every submodule,
-#: a tenth of a second at each command's start).
-_NUMPY = ({"numpy": np}, np)
-
-
-def _vector_eval(args, expr, columns, runs) -> np.ndarray:
-    """``expr`` (of the layout's arguments) at every run at once."""
-    from ..compiled.codesafe import safe_lambdify
-
-    f = safe_lambdify(args, [expr], modules=list(_NUMPY), cse=False, where="sweep")
-    with np.errstate(all="ignore"):
-        return np.broadcast_to(np.asarray(f(*columns)[0], dtype=float), (runs,)).copy()
+        Y[:, i] = evaluate(expr, cols, runs) if isinstance(expr, list) else symbolic(expr, cols, runs)

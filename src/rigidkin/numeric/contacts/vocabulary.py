@@ -1,0 +1,40 @@
+"""The words of hybrid motion: the state of a contact in a mode, and a mode told in words.
+
+A *mode* gives every contact a state: ``open`` (apart, no reaction), ``slip`` (touching and sliding, the
+friction µk N against the slip, or smooth) or ``stick`` (touching without sliding: sticking, or rolling
+for a contact with a radius).  A mode is keyed by its sorted (contact, state) pairs; a mode the model
+cannot derive (no coordinate lets a contact open) is :class:`ModeUnavailable`.  Shared by the modes'
+derivation (:mod:`.modes`), the choice of a consistent mode (:mod:`.settle`, :mod:`.contact_modes`),
+3D slip (:mod:`.slip3d`), impacts and transitions.
+"""
+
+from __future__ import annotations
+
+from ...base.errors import RigidkinError
+from ...model.constraints import SMOOTH
+
+OPEN, SLIP, STICK = "open", "slip", "stick"
+
+
+class ModeUnavailable(RigidkinError):
+    """A mode the motion needs cannot be derived from the model (e.g. no coordinate lets a contact open)."""
+
+
+def mode_key(mode: dict) -> tuple:
+    return tuple(sorted(mode.items()))
+
+
+def describe_mode(system, mode: dict) -> str:
+    """``A open, B closed (smooth)``: the contacts' states in words."""
+    words = []
+    for name, st in sorted(mode.items()):
+        c = system.constraints[name]
+        if st == OPEN:
+            words.append(f"{name} open")
+        elif st == STICK:
+            words.append(f"{name} rolling" if c.radius != 0 else f"{name} sticking")
+        elif c.friction == SMOOTH:
+            words.append(f"{name} closed")
+        else:
+            words.append(f"{name} slipping")
+    return ", ".join(words) or "no contacts"
