@@ -269,3 +269,11 @@ def test_old_import_paths_give_the_moved_modules():
 
     assert codegen is moved
     assert importlib.import_module("rigidkin.laws.energy").__name__ == "rigidkin.derive.laws.energy"
+
+
+def test_the_route_answers_at_its_old_module_path():
+    """``rigidkin.numeric.large`` (once the route's module, now the package of large systems)."""
+    from rigidkin.numeric.large import SYMBOLIC_LIMIT, numeric_route
+    from rigidkin.numeric.large.route import SYMBOLIC_LIMIT as limit
+
+    assert SYMBOLIC_LIMIT == limit == 12 and callable(numeric_route)
