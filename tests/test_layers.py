@@ -277,3 +277,11 @@ def test_the_route_answers_at_its_old_module_path():
     from rigidkin.numeric.large.route import SYMBOLIC_LIMIT as limit
 
     assert SYMBOLIC_LIMIT == limit == 12 and callable(numeric_route)
+
+
+def test_moved_modules_answer_as_attributes_of_the_package():
+    """``rk.units`` (an attribute, not an import) gives the moved module too."""
+    import rigidkin as rk
+    from rigidkin.base import units
+
+    assert rk.units is units and rk.units.TIME is units.TIME

@@ -60,6 +60,8 @@ def __getattr__(name: str):
         module, attr = _LAZY[name]
         mod = importlib.import_module(module)
         value = mod if attr is None else getattr(mod, attr)
+    elif name in _MOVED:                       # a module that moved (rk.units): the module at its new path
+        value = importlib.import_module(f"rigidkin.{_MOVED[name]}")
     else:
         raise AttributeError(f"module 'rigidkin' has no attribute {name!r}")
     globals()[name] = value
