@@ -7,9 +7,10 @@ the function (as it always was), not the submodule of the same name.
 
 from __future__ import annotations
 
-import importlib
 import sys
 import types
+
+from ..base.lazy import names_on_first_use
 
 _LAZY = {"simulate": ".simulate", "Phase": ".simulate", "SimulationResult": ".result", "Event": ".result",
          "SimulationError": ".rhs", "make_rhs": ".rhs"}
@@ -17,12 +18,7 @@ _LAZY = {"simulate": ".simulate", "Phase": ".simulate", "SimulationResult": ".re
 __all__ = ["simulate", "Phase", "SimulationResult", "Event", "SimulationError", "make_rhs"]
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__getattr__ = names_on_first_use(__name__, _LAZY)
 
 
 class _Package(types.ModuleType):

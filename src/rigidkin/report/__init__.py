@@ -13,7 +13,7 @@ solution, the notation) runs neither the document builder nor matplotlib.
 
 from __future__ import annotations
 
-import importlib
+from ..base.lazy import names_on_first_use
 
 #: public name → the module of this package that defines it
 _LAZY = {"Document": ".blocks", "REPORT_SECTIONS": ".document", "build_document": ".document",
@@ -24,12 +24,7 @@ __all__ = ["Document", "REPORT_SECTIONS", "build_document", "render", "write_doc
            "free_body_diagram"]
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__getattr__ = names_on_first_use(__name__, _LAZY)
 
 
 def __dir__() -> list[str]:
