@@ -11,16 +11,16 @@ from contextlib import contextmanager
 from ..base.errors import RigidkinError
 from ..base.textsafe import terminal_safe
 from ..base.timelimit import time_limit as limit
-from ..io.derivation_cache import Derivation
+from ..io.derivation_cache import CachedProblem
 from ..io.load import load_system
 from .deadline import set_step
 
 
 def open_problem(args):
-    """The problem of ``args.problem`` as a :class:`rigidkin.io.derivation_cache.Derivation`: read from the
+    """The problem of ``args.problem`` as a :class:`rigidkin.io.derivation_cache.CachedProblem`: read from the
     derivation cache when it was derived before (unless ``--no-cache``), else loaded from its file."""
 
-    return Derivation(args.problem, lambda: load_system(args.problem), use=not getattr(args, "no_cache", False))
+    return CachedProblem(args.problem, lambda: load_system(args.problem), use=not getattr(args, "no_cache", False))
 
 
 @contextmanager

@@ -33,7 +33,7 @@ def register(sub) -> None:
 def answer_questions(system, spec, args, derived=None) -> tuple[dict, list[str]]:
     """Answer the file's questions in order; a question that cannot be answered gets its reason.
 
-    With ``derived`` (a :class:`rigidkin.io.derivation_cache.Derivation`) the answers are read from it when
+    With ``derived`` (a :class:`rigidkin.io.derivation_cache.CachedProblem`) the answers are read from it when
     cached, and kept in it when every question was answered."""
 
     questions = spec.questions if spec is not None else ()

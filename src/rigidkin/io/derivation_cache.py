@@ -298,7 +298,7 @@ def _prune(where: Path) -> None:
         pass
 
 
-class Derivation:
+class CachedProblem:
     """A problem as a command uses it: ``system`` (with the derivations already cached), ``spec`` (the
     parsed file, None for a Python example) and ``answers`` (None until answered); ``save()`` stores
     whatever was derived since."""
