@@ -14,12 +14,14 @@ from .profiles import arc_for
 from .rolling3d import DiskContact
 from .ropes import build_rope
 from .surfaces import Circle, Line
+from .velocity_constraints import VelocityConstraintMethods
 
 t = dynamicsymbols._t
 
 
-class ConstraintMethods:
-    """Pins, contacts, collars, cables and ropes, each checked as it is added (mixed into System)."""
+class ConstraintMethods(VelocityConstraintMethods):
+    """Pins, contacts, collars, cables and ropes, each checked as it is added (mixed into System); knife edges
+    and velocity constraints from :mod:`rigidkin.model.velocity_constraints`."""
 
     # constraints --------------------------------------------------------------------------------
     def _add_constraint(self, c):
