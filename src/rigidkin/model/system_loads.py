@@ -8,14 +8,15 @@ from sympy.physics.vector import Vector, dynamicsymbols
 from ..base.errors import ModelError
 from . import loads as L
 from .checks import NONNEGATIVE
+from .inputs import InputMethods
 from .points import Point
 from .values import _expr
 
 t = dynamicsymbols._t
 
 
-class LoadMethods:
-    """Loads, each checked as it is added (mixed into System)."""
+class LoadMethods(InputMethods):
+    """Loads, each checked as it is added (mixed into System); inputs u(t) from :mod:`rigidkin.model.inputs`."""
 
     # loads -------------------------------------------------------------------------------------
     def _add_load(self, load):

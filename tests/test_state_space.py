@@ -1,0 +1,110 @@
+"""Inputs and the state-space form: a cart-pendulum pushed by a force input F(t).
+
+Reference: sympy.physics.mechanics — the same cart (a particle M on a rail) and uniform rod (m, l,
+hinged at the cart) built with KanesMethod, F a specified dynamicsymbol, and KanesMethod.linearize
+(A_and_B=True), as in sympy's own linearisation tests (test_linearize.py) and its cart-pendulum
+System example (test_system.py), at the hanging (θ = 0) and upright (θ = π) states.
+"""
+
+import numpy as np
+import pytest
+import sympy as sp
+from sympy.physics import mechanics as me
+
+import rigidkin as rk
+from rigidkin.analysis.state_space import state_space
+from rigidkin.base.errors import RigidkinError
+
+
+def cart_pendulum(values=False):
+    s = rk.System("cart-pendulum")
+    v = (lambda x: x) if values else (lambda x: None)
+    M = s.parameter("M", "kg", value=v(2.0))
+    m = s.parameter("m", "kg", value=v(0.5))
+    l = s.parameter("l", "m", value=v(0.8))
+    g = s.parameter("g", "m/s^2", value=v(9.81))
+    F = s.input("F", "N", "force on the cart, positive along Ex")
+    x = s.coordinate("x", "of the cart along Ex", kind="length")
+    th = s.coordinate("theta", "of the rod from the downward vertical, counter-clockwise")
+    C = s.point("C", offset=x * s.inertial.x)
+    cart = s.body("cart", rk.shapes.PointMass(M), frame=s.inertial, at=C)
+    R = s.frame("R", angle=th)
+    G = s.point("G", C, -l / 2 * R.y)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=G)
+    s.collar("rail", cart, s.inertial.x, point=C)
+    s.pin("hinge", C, rod, body_b=cart)
+    s.gravity(g)
+    s.force("push", C, F * s.inertial.x)
+    return s
+
+
+def sympy_reference(theta0):
+    """A and B from sympy.physics.mechanics (Kane's method) at θ = theta0, rates and F zero."""
+    M, m, l, g = sp.symbols("M m l g", positive=True)
+    q1, q2, u1, u2, F = me.dynamicsymbols("q1 q2 u1 u2 F")
+    N = me.ReferenceFrame("N")
+    A = N.orientnew("A", "Axis", [q2, N.z])
+    A.set_ang_vel(N, u2 * N.z)
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    Cp = O.locatenew("C", q1 * N.x)
+    Cp.set_vel(N, u1 * N.x)
+    Go = Cp.locatenew("G", -l / 2 * A.y)
+    Go.v2pt_theory(Cp, N, A)
+    cart = me.Particle("cart", Cp, M)
+    rod = me.RigidBody("rod", Go, A, m, (me.inertia(A, 0, 0, m * l**2 / 12), Go))
+    loads = [(Cp, -M * g * N.y + F * N.x), (Go, -m * g * N.y)]
+    km = me.KanesMethod(N, [q1, q2], [u1, u2], kd_eqs=[q1.diff() - u1, q2.diff() - u2])
+    km.kanes_equations([cart, rod], loads)
+    op = {q1: 0, q2: theta0, u1: 0, u2: 0, F: 0, u1.diff(): 0, u2.diff(): 0}
+    A_, B_, r = km.linearize(A_and_B=True, op_point=op, simplify=True)
+    assert list(r) == [F]
+    return A_, B_, {"M": M, "m": m, "l": l, "g": g}
+
+
+@pytest.mark.parametrize("theta0", [0, sp.pi])
+def test_cart_pendulum_A_and_B_equal_sympy_linearize(theta0):
+    ss = state_space(cart_pendulum().solve(), {"x": 0, "theta": theta0})
+    A_ref, B_ref, syms = sympy_reference(theta0)
+    ours = {p.name: p for p in ss.A.free_symbols | ss.B.free_symbols}
+    to_ref = {ours[k]: syms[k] for k in ours}
+    assert ss.states == ("x", "theta", "dot(x)", "dot(theta)") and ss.inputs == ("F",)
+    assert sp.simplify(ss.A.xreplace(to_ref) - A_ref) == sp.zeros(4, 4)
+    assert sp.simplify(ss.B.xreplace(to_ref) - B_ref) == sp.zeros(4, 1)
+    # the upright state is unstable (a positive real eigenvalue), the hanging one oscillates
+    A_num, *_ = ss.numeric({"M": 2.0, "m": 0.5, "l": 0.8, "g": 9.81})
+    re_max = np.linalg.eigvals(A_num).real.max()
+    assert (re_max > 1.0) if theta0 == sp.pi else (abs(re_max) < 1e-9)
+
+
+def test_outputs_C_and_D_with_a_reaction():
+    """C and D for θ and the hinge's horizontal force; D by hand: R_x = m ā_Gx = m (ẍ + l θ̈/2) at θ = 0."""
+    s = cart_pendulum()
+    ss = state_space(s.solve(), {"theta": 0}, outputs=["theta", "dot(x)", "R_hingex"])
+    assert ss.C[0, :] == sp.Matrix([[0, 1, 0, 0]]) and ss.C[1, :] == sp.Matrix([[0, 0, 1, 0]])
+    assert ss.D[0, 0] == 0 and ss.D[1, 0] == 0
+    m, l = s.parameters["m"], s.parameters["l"]
+    assert sp.simplify(ss.D[2, 0] - m * (ss.B[2, 0] + l / 2 * ss.B[3, 0])) == 0
+    # and its θ-row of C: R_x = m(ẍ + l θ̈/2) with the A rows
+    assert sp.simplify(ss.C[2, 1] - m * (ss.A[2, 1] + l / 2 * ss.A[3, 1])) == 0
+
+
+def test_state_space_refusals():
+    s = cart_pendulum(values=True)
+    sol = s.solve()
+    with pytest.raises(RigidkinError, match="not a steady motion"):
+        state_space(sol, {"theta": 0.3})
+    with pytest.raises(RigidkinError, match="not an input"):
+        state_space(sol, {"theta": 0}, inputs={"T": 1})
+    with pytest.raises(RigidkinError, match="not an independent coordinate"):
+        state_space(sol, {"theta": 0}, outputs=["nope"])
+    # a constant push F* and the cart accelerating is no steady motion either
+    with pytest.raises(RigidkinError, match="not a steady motion"):
+        state_space(sol, {"theta": 0}, inputs={"F": 1.0})
+
+
+def test_input_prints_as_a_function_of_time():
+    s = cart_pendulum()
+    eom = str(s.solve().accelerations[s.coordinates[0]])
+    assert "F(t)" in eom
+    assert s.inputs["F"].unit == "N"
