@@ -108,3 +108,62 @@ def test_input_prints_as_a_function_of_time():
     eom = str(s.solve().accelerations[s.coordinates[0]])
     assert "F(t)" in eom
     assert s.inputs["F"].unit == "N"
+
+
+# simulation with inputs ---------------------------------------------------------------------------------
+def _reference(force, t_end, y0):
+    """The cart-pendulum's equations written by hand (Lagrange, rod of mass m, length l hinged at the cart):
+    (M + m) ẍ + (m l/2)(θ̈ cos θ − θ̇² sin θ) = F,  (m l²/3) θ̈ + (m l/2)(ẍ cos θ + g sin θ) = 0;
+    integrated with scipy's solve_ivp."""
+    from scipy.integrate import solve_ivp
+
+    M, m, l, g = 2.0, 0.5, 0.8, 9.81
+
+    def f(tt, z):
+        x, th, xd, thd = z
+        F = force(tt, {"x": x, "theta": th, "dot(x)": xd, "dot(theta)": thd})
+        Mm = np.array([[M + m, m * l / 2 * np.cos(th)], [m * l / 2 * np.cos(th), m * l**2 / 3]])
+        rhs = np.array([F + m * l / 2 * thd**2 * np.sin(th), -m * l / 2 * g * np.sin(th)])
+        return [xd, thd, *np.linalg.solve(Mm, rhs)]
+
+    return solve_ivp(f, (0, t_end), y0, rtol=1e-11, atol=1e-13, dense_output=True)
+
+
+def _compare(res, ref):
+    z = ref.sol(res.t)
+    for i, name in enumerate(("x", "theta", "dot(x)", "dot(theta)")):
+        assert np.max(np.abs(res[name] - z[i])) < 1e-6, name
+
+
+def test_simulate_with_an_expression_a_table_and_feedback():
+    from rigidkin.numeric import simulate
+
+    s = cart_pendulum(values=True)
+    y0 = {"x": 0.0, "theta": 0.2, "dot(x)": 0.0, "dot(theta)": 0.0}
+    z0 = [0.0, 0.2, 0.0, 0.0]
+    t_ = rk.t
+    res = simulate(s, 2.0, y0, inputs={"F": 3 * sp.sin(2 * t_)})
+    _compare(res, _reference(lambda tt, st: 3 * np.sin(2 * tt), 2.0, z0))
+    assert res.energy_drift < 1e-6                 # the input's work is counted in the energy balance
+    table = ([0.0, 0.5, 1.0, 2.0], [0.0, 4.0, -2.0, -2.0])
+    res = simulate(s, 2.0, y0, inputs={"F": table})
+    _compare(res, _reference(lambda tt, st: float(np.interp(tt, *table)), 2.0, z0))
+    # feedback: a PD law on the cart's position
+    law = lambda tt, st: -5.0 * st["x"] - 2.0 * st["dot(x)"] + 1.0  # noqa: E731
+    res = simulate(s, 2.0, y0, inputs={"F": law})
+    _compare(res, _reference(law, 2.0, z0))
+
+
+def test_simulate_refuses_missing_and_unknown_inputs():
+    from rigidkin.base.errors import InputError
+    from rigidkin.numeric import simulate
+
+    s = cart_pendulum(values=True)
+    with pytest.raises(InputError, match="no history"):
+        simulate(s, 1.0, {"theta": 0.1})
+    with pytest.raises(InputError, match="not an input"):
+        simulate(s, 1.0, {"theta": 0.1}, inputs={"F": 0, "G": 1})
+    with pytest.raises(InputError, match="increasing"):
+        simulate(s, 1.0, {"theta": 0.1}, inputs={"F": ([0, 0], [1, 2])})
+    with pytest.raises(InputError, match="as well as on time"):
+        simulate(s, 1.0, {"theta": 0.1}, inputs={"F": s.coordinates[0]})

@@ -22,6 +22,7 @@ from ..derive.kinematics import linear_form
 from ..model.definitions import expand
 from ..model.speeds import STABILISATION, quaternion_groups
 from .compiled.codesafe import safe_lambdify
+from .inputs import ACTIVE as INPUTS
 from .state import StateLayout, parameter_vector
 
 t = dynamicsymbols._t
@@ -137,6 +138,9 @@ class RegimeFunctions:
     def evaluate(self, t_: float, y: np.ndarray, p) -> tuple[np.ndarray, dict, np.ndarray]:
         """(dy/dt of (q, q̇), reactions by name, quantities) at one state; the last call is remembered."""
         lay = self.layout
+        bind = INPUTS.get()                   # the inputs u(t) of the simulation in progress (numeric/inputs.py)
+        if bind is not None:
+            p = bind(t_, y, p)
         st = tuple(float(v) for v in y[:2 * lay.n])
         key = (float(t_), st, tuple(p))
         if key == self._key:

@@ -26,10 +26,12 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.errors import InputError
 from ..derive.derivation import derivation_of
 from ..model.constraints import Coulomb
+from ..model.inputs import inputs_of
 from .contacts.contact_modes import confirm, decide
 from .contacts.modes import Hybrid
 from .contacts.transition import transition as _transition
 from .contacts.vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode
+from .inputs import ACTIVE, binding, placeholders
 from .large.route import numeric_route, simulate_tree
 from .large.tree import NotATree
 from .result import Event, Segment, SimulationResult, build_result
@@ -206,7 +208,28 @@ def _sliding(hyb, mode, t_, y, p) -> bool:
 
 
 def simulate(system, t_span, initial_state: Mapping | None = None, params: Mapping | None = None, *,
-             phases: Sequence[Phase] | None = None, mode: Mapping | None = None, restitution=0.0,
+             inputs: Mapping | None = None, **options) -> SimulationResult:
+    """:func:`simulate_motion` with the system's inputs u(t) given by ``inputs`` (name → a number, an expression
+    of t, a table (times, values) or a function of (t, state): :mod:`rigidkin.numeric.inputs`).  ``options``:
+    those of :func:`simulate_motion` (phases, mode, restitution, method, tolerances, n_points, …)."""
+    if not inputs_of(system):
+        binding(system, None, inputs, ())                     # refuses inputs given to a system without any
+        return simulate_motion(system, t_span, initial_state, params, **options)
+    if numeric_route(system) is not None:
+        raise InputError("inputs are not supported on the numeric route of large trees of bodies.",
+                         where=system.name, hint="Write the input as a load of the parameters and t instead.")
+    base = {**placeholders(system), **dict(params or {})}
+    lay = StateLayout.of(system)
+    bind = binding(system, lay, inputs, parameter_vector(system, lay, base))
+    token = ACTIVE.set(bind)
+    try:
+        return simulate_motion(system, t_span, initial_state, base, **options)
+    finally:
+        ACTIVE.reset(token)
+
+
+def simulate_motion(system, t_span, initial_state: Mapping | None = None, params: Mapping | None = None, *,
+                    phases: Sequence[Phase] | None = None, mode: Mapping | None = None, restitution=0.0,
              method: str = "DOP853", rtol: float = 1e-11, atol: float = 1e-13, max_step: float | None = None,
              n_points: int = 1001, max_events: int = 1000, rest_speed: float = 1e-5,
              energy_tol: float = 1e-6, residual_tol: float = 1e-6,

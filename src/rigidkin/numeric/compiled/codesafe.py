@@ -24,6 +24,7 @@ from sympy.core.function import AppliedUndef
 
 from ...base.errors import RigidkinError
 from ...model.definitions import expand
+from ...model.inputs import InputSymbol  # an input u(t): a Symbol (renamed like every symbol)
 
 
 class UnsafeCodeError(RigidkinError):
@@ -59,7 +60,7 @@ def check_expressions(exprs: Iterable, symbols: Iterable[sp.Symbol] | None = Non
         seen.add(node)
         stack.extend(node.args)
         mod = type(node).__module__ or ""
-        if isinstance(node, _FORBIDDEN) or not mod.startswith("sympy."):
+        if isinstance(node, _FORBIDDEN) or not (mod.startswith("sympy.") or type(node) is InputSymbol):
             raise UnsafeCodeError(f"an expression contains {_describe(node)}, which is not plain mathematics, "
                                   "so no code is generated for it.", where=where or "code generation",
                                   hint="Every quantity must be a parameter, a coordinate, a rate or time, "
