@@ -10,13 +10,15 @@ from . import loads as L
 from .checks import NONNEGATIVE
 from .inputs import InputMethods
 from .points import Point
+from .rotational_loads import RotationalLoadMethods
 from .values import _expr
 
 t = dynamicsymbols._t
 
 
-class LoadMethods(InputMethods):
-    """Loads, each checked as it is added (mixed into System); inputs u(t) from :mod:`rigidkin.model.inputs`."""
+class LoadMethods(InputMethods, RotationalLoadMethods):
+    """Loads, each checked as it is added (mixed into System); inputs u(t) from :mod:`rigidkin.model.inputs`;
+    rotational springs and dampers from :mod:`rigidkin.model.rotational_loads`."""
 
     # loads -------------------------------------------------------------------------------------
     def _add_load(self, load):

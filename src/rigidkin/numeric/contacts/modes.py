@@ -30,6 +30,7 @@ from ...derive.laws.energy import kinetic_energy, nonconservative_power, potenti
 from ...derive.laws.newton_euler import body_balances
 from ...derive.mode import setup_mode
 from ...model.constraints import ROLLING, SMOOTH, Contact, Coulomb
+from ...model.inputs import input_symbols
 from ..rhs import RegimeFunctions, compile_functions
 from ..state import StateLayout
 from .mode_model import ModeModel, Watch
@@ -195,7 +196,7 @@ class Hybrid:
         out = set()
         for i, e in enumerate(wexprs):
             full = self.layout.to_plain(sp.sympify(e).xreplace(react))
-            if not full.has(t):
+            if not full.has(t, *input_symbols(self.system)):      # an input u(t) varies too
                 out.add(i)
         return frozenset(out)
 
