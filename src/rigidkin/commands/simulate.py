@@ -68,7 +68,7 @@ def _pairs(items: list[str], what: str) -> dict:
 
 def _restitution(items: list[str]):
     if not items:
-        return 0.0
+        return None                 # each contact's coefficient from the problem file (or 0)
     if len(items) == 1 and "=" not in items[0]:
         return _number(items[0], "--restitution")
     return {k: _number(v, "--restitution") for k, v in _pairs(items, "--restitution").items()}

@@ -39,7 +39,7 @@ class ConstraintsAndLoads:
         return "smooth" if mu == 0 else mu
 
     def names(self, c, path):
-        for key in ("normal_name", "friction_name", "couple_name", "tension_name"):
+        for key in ("normal_name", "friction_name", "couple_name", "tension_name", "reaction_name"):
             v = getattr(c, key, None)
             if v is not None:
                 check_name(v, "reaction", self.where(*path, key))
@@ -93,12 +93,23 @@ class ConstraintsAndLoads:
                 else:
                     stations.append(self.point(st, here))
             self.call(path, self.s.rope, name, stations, c.tensions, c.description)
+        elif isinstance(c, S.KnifeEdgeSpec):
+            self.call(path, self.s.knife_edge, name, self.body(c.body, path + ("body",)),
+                      self.point(c.point, path + ("point",)), self.vector(c.direction, path + ("direction",)),
+                      c.reaction_name, c.description)
+        elif isinstance(c, S.VelocityConstraintSpec):
+            self.call(path, self.s.velocity_constraint, name, self.scalar(c.expression, path + ("expression",)),
+                      c.reaction_name, c.description)
         else:
             self.call(path, self.s.collar, name, self.body(c.body, path + ("body",)),
                       self.vector(c.along, path + ("along",)), self.point(c.through, path + ("through",), True),
                       self.point(c.point, path + ("point",), True),
                       self.body(c.track_body, path + ("track_body",), True),
                       self.friction(c.friction, path + ("friction",)), c.normal_name, c.couple_name, c.description)
+
+        if getattr(c, "restitution", None) is not None:            # Newton's law for the contact's impacts
+            self.call(path + ("restitution",), self.s.restitution, name,
+                      self.scalar(c.restitution, path + ("restitution",)))
 
     def _needs(self, method: str, path) -> None:
         if not hasattr(self.s, method):
@@ -146,6 +157,13 @@ class ConstraintsAndLoads:
                                        self.scope.with_names(self.reactions))
             self.call(path, s.friction, name, B("body"), P("centre"), vec("normal"), sc("mu"), normal_force,
                       sc("radius"), B("against_body", True), P("against_point", True), ld.description)
+        elif isinstance(ld, S.RotationalSpringSpec):
+            angle = None if ld.angle is None else sc("angle")
+            self.call(path, s.rotational_spring, name, B("body_a"), sc("stiffness"), B("body_b", True),
+                      sc("natural_angle"), vec("axis"), angle, ld.description)
+        elif isinstance(ld, S.RotationalDamperSpec):
+            self.call(path, s.rotational_damper, name, B("body_a"), sc("coefficient"), B("body_b", True),
+                      vec("axis"), ld.description)
         else:
             self.call(path, s.impulse, name, P("point"), vec("vector"), B("body", True), ld.description,
                       on=B("on", True))

@@ -148,6 +148,8 @@ class _Builder(ConstraintsAndLoads, Questions):
             self.parameter(name, p)
         for name, d in sp_.definitions.items():
             self.definition(name, d)
+        for name, i in sp_.inputs.items():
+            self.input(name, i)
         for name, c in sp_.coordinates.items():
             self.coordinate(name, c)
         self.frames()
@@ -215,6 +217,13 @@ class _Builder(ConstraintsAndLoads, Questions):
             to_si(value, unit, where)             # checked here to name the field; System converts it
         sym = self.call(path, self.s.parameter, name, p.unit, p.description, value, p.dimension, p.positive)
         self.scope.names[name] = sym
+
+    def input(self, name, i: S.InputSpec):
+        """An input u(t) ([inputs]): a name in every expression, printed as name(t)."""
+        path = ("inputs", name)
+        self.declared(name, "input", path)
+        history = None if i.history is None else self.scalar(i.history, path + ("history",))
+        self.scope.names[name] = self.call(path, self.s.input, name, i.unit, i.description, history=history)
 
     def definition(self, name, d):
         """A derived quantity of the parameters (and earlier definitions): a name in every expression."""

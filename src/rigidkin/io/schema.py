@@ -19,37 +19,12 @@ The inertial frame ``F`` (basis ``Ex, Ey, Ez``) and the origin ``O`` always exis
 from __future__ import annotations
 
 import inspect
-from typing import Annotated, Any, Literal, Union
+from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, create_model
+from pydantic import Field, create_model
 
 from ..model.shapes import SHAPES
-
-
-def _expression(value: Any) -> Any:
-    if isinstance(value, bool) or not isinstance(value, str | int | float):
-        raise ValueError("expected an expression (a string such as \"l/2\") or a number")
-    return value
-
-
-def _quantity(value: Any) -> Any:
-    if isinstance(value, bool) or not isinstance(value, str | int | float):
-        raise ValueError("expected a number or a quantity with a unit (a string such as \"30 deg\")")
-    return value
-
-
-#: An expression: a string in the safe expression language, or a number.
-Expr = Annotated[Any, BeforeValidator(_expression)]
-#: A number, or a string: a quantity with a unit ("30 deg") or an expression.
-Quantity = Annotated[Any, BeforeValidator(_quantity)]
-Name = str
-State = dict[str, Quantity]
-
-
-class Strict(BaseModel):
-    """Base of every table: unknown fields are refused, types are not coerced."""
-
-    model_config = ConfigDict(extra="forbid", strict=True, populate_by_name=False)
+from .schema_base import Expr, Name, Quantity, State, Strict  # noqa: F401  (public here too)
 
 
 # declarations --------------------------------------------------------------------------------------------
@@ -59,6 +34,15 @@ class ParameterSpec(Strict):
     description: str = ""
     value: Quantity | None = None
     positive: bool = True
+
+
+class InputSpec(Strict):
+    """An input u(t): its unit, what it is with its positive sense, and optionally its history (an expression
+    of t and the parameters) for simulations."""
+
+    unit: str | None = None
+    description: str = ""
+    history: Expr | None = None
 
 
 class DefinitionSpec(Strict):
@@ -197,6 +181,7 @@ class ContactSpec(Strict):
     normal_name: Name | None = None
     friction_name: Name | None = None
     arc: ArcSpec | bool | None = None     # None: the shape's own (half shapes); false: the whole circle
+    restitution: Expr | None = None       # Newton's coefficient e of its impacts (0 ≤ e ≤ 1; default 0)
     description: str = ""
 
 
@@ -226,6 +211,7 @@ class DiskContactSpec(Strict):
     unilateral: bool = True
     normal_name: Name | None = None
     friction_name: Name | None = None
+    restitution: Expr | None = None
     description: str = ""
 
 
@@ -260,8 +246,28 @@ class RopeSpec(Strict):
     description: str = ""
 
 
-ConstraintSpec = Annotated[PinSpec | ContactSpec | CollarSpec | DiskContactSpec | CableSpec | RopeSpec,
-                           Field(discriminator="type")]
+class KnifeEdgeSpec(Strict):
+    """A knife edge: ``point`` of ``body`` cannot move along ``direction`` (a unit vector fixed in the body)."""
+
+    type: Literal["knife_edge"]
+    body: Name
+    point: Name
+    direction: Expr
+    reaction_name: Name | None = None
+    description: str = ""
+
+
+class VelocityConstraintSpec(Strict):
+    """A velocity constraint ``expression`` = 0, linear in the rates dot(q); reaction: its multiplier."""
+
+    type: Literal["velocity_constraint"]
+    expression: Expr
+    reaction_name: Name | None = None
+    description: str = ""
+
+
+ConstraintSpec = Annotated[PinSpec | ContactSpec | CollarSpec | DiskContactSpec | CableSpec | RopeSpec
+                           | KnifeEdgeSpec | VelocityConstraintSpec, Field(discriminator="type")]
 
 
 # loads ----------------------------------------------------------------------------------------------------
@@ -347,8 +353,33 @@ class ImpulseSpec(Strict):
     description: str = ""
 
 
+class RotationalSpringSpec(Strict):
+    """Torque −k (θ_rel − θ0) about ``axis`` on ``body_a``, the opposite on ``body_b`` (none: the ground)."""
+
+    type: Literal["rotational_spring"]
+    body_a: Name
+    stiffness: Expr
+    body_b: Name | None = None
+    natural_angle: Expr = 0
+    axis: Expr | None = None
+    angle: Expr | None = None            # θ_rel when the frames do not give it
+    description: str = ""
+
+
+class RotationalDamperSpec(Strict):
+    """Torque −c ω_rel about ``axis`` on ``body_a``, the opposite on ``body_b`` (none: the ground)."""
+
+    type: Literal["rotational_damper"]
+    body_a: Name
+    coefficient: Expr
+    body_b: Name | None = None
+    axis: Expr | None = None
+    description: str = ""
+
+
 LoadSpec = Annotated[GravitySpec | ForceSpec | TorqueSpec | SpringSpec | TorsionalSpringSpec | DamperSpec
-                     | FrictionSpec | ImpulseSpec, Field(discriminator="type")]
+                     | FrictionSpec | ImpulseSpec | RotationalSpringSpec | RotationalDamperSpec,
+                     Field(discriminator="type")]
 
 
 # questions ------------------------------------------------------------------------------------------------
@@ -451,6 +482,7 @@ class ProblemFile(Strict):
     name: Name | None = None
     statement: str = ""
     parameters: dict[Name, ParameterSpec] = {}
+    inputs: dict[Name, InputSpec] = {}
     definitions: dict[Name, DefinitionSpec | Expr] = {}
     coordinates: dict[Name, CoordinateSpec] = {}      # none only where a quaternion frame brings its own
     frames: dict[Name, FrameSpec] = {}

@@ -16,10 +16,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 
 from ..base.errors import ModelError
 from ..base.units import NAMED, ONE, Dimension, unit_dimension
 from .quantities import Parameter
+from .values import _expr
 
 
 class InputSymbol(sp.Symbol):
@@ -46,6 +48,7 @@ class Input:
     unit: str = ""
     dimension: Dimension = ONE
     description: str = ""
+    history: sp.Expr | None = None        # u(t) a simulation uses when it is given none (an expression of t)
 
     def __repr__(self) -> str:
         return f"Input({self.name}(t) [{self.unit or self.dimension}]: {self.description})"
@@ -63,11 +66,13 @@ def input_symbols(system) -> set:
 class InputMethods:
     """``System.input`` (mixed into System)."""
 
-    def input(self, name: str, unit: str | None = None, description: str = "", dimension: str | None = None):
+    def input(self, name: str, unit: str | None = None, description: str = "", dimension: str | None = None,
+              history=None):
         """Declare an input u(t) (a given function of time: a motor torque, a control force); returns its symbol.
 
         ``description`` says what it is and its positive sense ("force on the cart, positive along Ex").
-        Use it in loads like a parameter; give its history to ``simulate(..., inputs=...)``.
+        Use it in loads like a parameter; give its history to ``simulate(..., inputs=...)``, or here as
+        ``history`` (an expression of t and the parameters: the default of every simulation).
         """
         where = f"input {name}"
         if unit is not None:
@@ -79,6 +84,10 @@ class InputMethods:
             dim = NAMED[dimension]
         else:
             dim = ONE
+        hist = None if history is None else _expr(history, where)
+        if hist is not None and hist.atoms(AppliedUndef):
+            raise ModelError(f"the history {hist} of an input is an expression of t and the parameters only.",
+                             where=where, hint="Give feedback laws to simulate(..., inputs={name: function}).")
         self._claim(name, "input")
         sym = InputSymbol(name, real=True)
         desc = description or "input"
@@ -86,7 +95,7 @@ class InputMethods:
         self._parameters[name] = Parameter(name, sym, f"input: {desc}", unit or "", dim, None)
         if getattr(self, "_inputs", None) is None:
             self._inputs = {}
-        self._inputs[name] = Input(name, sym, unit or "", dim, desc)
+        self._inputs[name] = Input(name, sym, unit or "", dim, desc, hist)
         return sym
 
     @property

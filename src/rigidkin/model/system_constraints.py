@@ -142,3 +142,25 @@ class ConstraintMethods(VelocityConstraintMethods):
         for sym in con.reactions():
             self._claim(sym.name, "reaction", owner=f"rope {name}")
         return self._add_constraint(con)
+
+    def restitution(self, contact, e) -> None:
+        """The coefficient of restitution e of ``contact``'s impacts (Newton's law: the normal speed after an
+        impact is −e times the speed before), 0 ≤ e ≤ 1; a simulation uses it unless told otherwise."""
+        where = f"restitution of {contact}"
+        con = self.constraints.get(contact if isinstance(contact, str) else getattr(contact, "name", None))
+        if con is None or getattr(con, "kind", "") != "contact":
+            known = [n for n, c in self.constraints.items() if getattr(c, "kind", "") == "contact"]
+            raise ModelError(f"{contact!r} is not a contact of this system.", where=where,
+                             hint=f"Contacts: {', '.join(known) or 'none'}.")
+        value = self._value(e, where, NONNEGATIVE, "coefficient of restitution")
+        number = float(value.xreplace(self.parameter_values())) if value.free_symbols else float(value)
+        if not 0.0 <= number <= 1.0:
+            raise ModelError(f"the coefficient of restitution {value} = {number:g} is not in [0, 1].", where=where)
+        if getattr(self, "_restitutions", None) is None:
+            self._restitutions = {}
+        self._restitutions[con.name] = number
+
+    @property
+    def restitutions(self) -> dict:
+        """Contact name → its declared coefficient of restitution."""
+        return dict(getattr(self, "_restitutions", None) or {})

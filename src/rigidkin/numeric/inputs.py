@@ -84,6 +84,9 @@ def binding(system, layout, inputs: Mapping | None, p0) -> Callable | None:
                          hint=f"Inputs: {', '.join(declared) or 'none (declare them with System.input)'}.")
     if not declared:
         return None
+    for k, i in declared.items():                 # the history declared with the input (a problem file's)
+        if k not in {str(g) for g in given} and i.history is not None:
+            given[k] = i.history
     missing = [k for k in declared if k not in {str(g) for g in given}]
     if missing:
         raise InputError(f"the inputs {', '.join(missing)} have no history.", where="simulate",

@@ -78,12 +78,13 @@ def _span(t_span) -> tuple[float, float]:
 
 def _restitution(system, restitution) -> dict:
     hyb_contacts = [n for n, c in system.constraints.items() if getattr(c, "kind", "") == "contact"]
+    restitution = {} if restitution is None else restitution      # None: each contact's declared e (or 0)
     if isinstance(restitution, Mapping):
         bad = [n for n in restitution if n not in hyb_contacts]
         if bad:
             raise InputError(f"{', '.join(bad)} is not a contact of {system.name}.", where="restitution",
                              hint=f"Contacts: {', '.join(hyb_contacts) or 'none'}.")
-        out = {n: 0.0 for n in hyb_contacts}
+        out = {n: getattr(system, "restitutions", {}).get(n, 0.0) for n in hyb_contacts}
         out.update({n: float(v) for n, v in restitution.items()})
     else:
         out = {n: float(restitution) for n in hyb_contacts}
@@ -229,7 +230,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
 
 
 def simulate_motion(system, t_span, initial_state: Mapping | None = None, params: Mapping | None = None, *,
-                    phases: Sequence[Phase] | None = None, mode: Mapping | None = None, restitution=0.0,
+                    phases: Sequence[Phase] | None = None, mode: Mapping | None = None, restitution=None,
              method: str = "DOP853", rtol: float = 1e-11, atol: float = 1e-13, max_step: float | None = None,
              n_points: int = 1001, max_events: int = 1000, rest_speed: float = 1e-5,
              energy_tol: float = 1e-6, residual_tol: float = 1e-6,
@@ -241,7 +242,8 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
     (numbers are SI, strings carry units: ``{"beta": "30 deg"}``); ``phases`` splits the motion into
     stretches with their own parameters; ``mode`` fixes the starting state of contacts;
     ``restitution`` is e for every contact or a dict per contact (0: the contact closes on impact;
-    a bounce slower than ``rest_speed`` closes it too).  ``max_step`` defaults to 1/100 of the span.
+    a bounce slower than ``rest_speed`` closes it too; None: each contact's ``System.restitution``, or 0).
+    ``max_step`` defaults to 1/100 of the span.
     Returns a :class:`SimulationResult` with time histories, events, energy and constraint monitors.
     """
     t0, t1 = _span(t_span)
