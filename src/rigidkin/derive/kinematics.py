@@ -66,7 +66,7 @@ class Kinematics:
             for attr in ("vector", "direction", "along", "normal", "axis"):
                 v = getattr(ld, attr, None)
                 if isinstance(v, Vector):
-                    if ld.kind in ("torque", "torsional spring"):
+                    if ld.kind in ("torque", "torsional spring", "rotational spring", "rotational damper"):
                         if not (algebra.is_zero(v.dot(self.F.x)) and algebra.is_zero(v.dot(self.F.y))):
                             return False
                     elif not algebra.is_zero(v.dot(z)):
