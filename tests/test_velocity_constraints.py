@@ -106,3 +106,13 @@ def test_knife_edge_refusals():
         s.velocity_constraint("c1", x - y)
     with pytest.raises(ModelError, match="not linear"):
         s.velocity_constraint("c2", x.diff(rk.t) * y.diff(rk.t))
+
+
+def test_state_space_refuses_a_nonholonomic_reduction():
+    """The sleigh's equations depend on θ, which the edge gives only through θ̇: no state (q, q̇) of x, y."""
+    from rigidkin.analysis.state_space import state_space
+    from rigidkin.base.errors import RigidkinError
+
+    s, _, _ = sleigh()
+    with pytest.raises(RigidkinError, match="nonholonomic"):
+        state_space(s.solve(), {"x": 0, "y": 0})

@@ -112,6 +112,14 @@ def state_space(solution, at: Mapping, inputs: Mapping | None = None, outputs: S
     qs = list(solution.coordinates)
     us = [q.diff(t) for q in qs]
     M, f = regime.raw_mass_matrix, regime.raw_forcing
+    hidden = [q for q in system.coordinates if q not in qs and (M.has(q) or f.has(q))]
+    if hidden:
+        names = ", ".join(q.func.__name__ for q in hidden)
+        raise RigidkinError(f"the equations of motion depend on {names}, which the constraints give only through "
+                            "their rates (a nonholonomic constraint), so the state (q, q̇) of the independent "
+                            "coordinates does not determine the motion.", where="state_space",
+                            hint="Linearise in every coordinate and the independent speeds numerically "
+                                 "(rigidkin.numeric.large.projected.ProjectedModel), or simulate.")
     Mo = M.xreplace(point).applyfunc(algebra.readable)
     fo = f.xreplace(point)
     values = numeric_values(solution)

@@ -91,7 +91,8 @@ def binding(system, layout, inputs: Mapping | None, p0) -> Callable | None:
     if missing:
         raise InputError(f"the inputs {', '.join(missing)} have no history.", where="simulate",
                          hint="Give each input as a number, an expression of t, a table (times, values) or a "
-                              "function of (t, state): simulate(..., inputs={'" + missing[0] + "': ...}).")
+                              "function of (t, state): simulate(..., inputs={'" + missing[0] + "': ...}); in a "
+                              "problem file, history = \"...\" (an expression of t) in its [inputs] table.")
     fns = []
     for key, value in given.items():
         name = str(key)
