@@ -38,7 +38,8 @@ def register(sub) -> None:
     p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="starting state of a contact: open, slip or stick")
     p.add_argument("--restitution", nargs="+", action="extend", default=[], metavar="E|CONTACT=E",
-                   help="coefficient of restitution of impacts, for all contacts or per contact (default 0)")
+                   help="coefficient of restitution of impacts, for all contacts or per contact (default: the "
+                        "contact's restitution in the problem file, else 0)")
     p.add_argument("--plot", metavar="PNG", help="write a figure of the histories")
     p.add_argument("--csv", metavar="CSV", help="write the histories as CSV")
     p.add_argument("--json", action="store_true", help="print events, final state and energy drift as JSON")
