@@ -116,3 +116,23 @@ def test_state_space_refuses_a_nonholonomic_reduction():
     s, _, _ = sleigh()
     with pytest.raises(RigidkinError, match="nonholonomic"):
         state_space(s.solve(), {"x": 0, "y": 0})
+
+
+def test_general_constraint_reaction_is_the_incline_normal_force():
+    """A particle held by ẏ = k ẋ (a smooth incline of slope k = tan α through the origin): by hand,
+    ẍ = −g sin α cos α, and the reaction λ (−k Ex + Ey) is the normal force, of magnitude m g cos α."""
+    t = rk.t
+    s = rk.System("incline")
+    m, g, k = s.parameter("m", "kg"), s.parameter("g", "m/s^2"), s.parameter("k")
+    x = s.coordinate("x", "along Ex", kind="length")
+    y = s.coordinate("y", "along Ey", kind="length")
+    C = s.point("C", offset=x * s.inertial.x + y * s.inertial.y)
+    s.body("bead", rk.shapes.PointMass(m), frame=s.inertial, at=C)
+    s.velocity_constraint("incline", y.diff(t) - k * x.diff(t))
+    s.gravity(g)
+    sol = s.solve()
+    alpha = sp.atan(k)
+    acc = sol.accelerations[x]
+    assert sp.simplify(acc + g * sp.sin(alpha) * sp.cos(alpha)) == 0
+    lam = sol.reactions["lambda_incline"]
+    assert sp.simplify(lam * sp.sqrt(1 + k**2) - m * g * sp.cos(alpha)) == 0
