@@ -98,6 +98,8 @@ def test_state_space_refusals():
         state_space(sol, {"theta": 0}, inputs={"T": 1})
     with pytest.raises(RigidkinError, match="not an independent coordinate"):
         state_space(sol, {"theta": 0}, outputs=["nope"])
+    with pytest.raises(RigidkinError, match="have no value"):
+        state_space(cart_pendulum().solve(), {"theta": 0}).numeric({"M": 1})
     # a constant push F* and the cart accelerating is no steady motion either
     with pytest.raises(RigidkinError, match="not a steady motion"):
         state_space(sol, {"theta": 0}, inputs={"F": 1.0})

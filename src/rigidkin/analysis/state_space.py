@@ -15,7 +15,7 @@ D are the derivatives of their expressions at the operating point.  Everything i
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
@@ -42,24 +42,26 @@ class StateSpace:
     inputs: tuple[str, ...]
     outputs: tuple[str, ...]
     operating_point: dict
+    values: dict = field(default_factory=dict, repr=False)    # the parameters' values (or probes) for numeric()
 
     def numeric(self, values: Mapping | None = None):
         """(A, B, C, D) as float arrays with the parameters' values (``values``: name or symbol → number)."""
         import numpy as np
 
-        vals = dict(self._values)
+        vals = dict(self.values)
+        symbols = set().union(*(m.free_symbols for m in (self.A, self.B, self.C, self.D)))
+        by_name = {str(s): s for s in symbols | set(vals)}
         for k, v in (values or {}).items():
-            key = next((s for s in vals if str(s) == str(k)), k)
-            vals[key] = float(v)
+            vals[by_name.get(str(k), k)] = float(v)
+        free = symbols - set(vals)
+        if free:
+            raise RigidkinError(f"the parameters {', '.join(sorted(map(str, free)))} have no value.",
+                                where="state_space numeric", hint="Give them: numeric({'m': 1.5, ...}).")
 
         def num(m):
             return np.array([[_num(m[i, j], vals) for j in range(m.cols)] for i in range(m.rows)], dtype=float)
 
         return num(self.A), num(self.B), num(self.C), num(self.D)
-
-    @property
-    def _values(self) -> dict:
-        return dict(self.__dict__.get("_vals", {}))
 
 
 def _resolve(solution, at: Mapping) -> dict:
@@ -147,8 +149,7 @@ def state_space(solution, at: Mapping, inputs: Mapping | None = None, outputs: S
         B[n:, :] = Mo.LUsolve(Fu).applyfunc(algebra.readable)
     C, D, names = _outputs(solution, regime, outputs, qs, us, u_syms, point)
     ss = StateSpace(A, B, C, D, tuple(q.func.__name__ for q in qs) + tuple(f"dot({q.func.__name__})" for q in qs),
-                    tuple(declared), names, point)
-    object.__setattr__(ss, "_vals", values)
+                    tuple(declared), names, point, dict(system.parameter_values()))
     return ss
 
 
