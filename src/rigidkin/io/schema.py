@@ -8,8 +8,9 @@ A problem file has, in this order of meaning (tables may come in any order in th
 declared first stay independent); ``[frames]`` (``R = { parent = "F", angle = "theta", axis = "z",
 basis = ["er", "et", "ez"] }``); ``[points]`` (``G = { from = "O", offset = "l/2*R.y", body = "rod" }``);
 ``[bodies]`` (``rod = { shape = "slender_rod", mass = "m", length = "l", axis = "y", frame = "R", at =
-"G" }``); ``[constraints]`` (``type = "pin" | "contact" | "collar"``); ``[loads]`` (``type = "gravity" |
-"force" | "torque" | "spring" | "torsional_spring" | "damper" | "friction" | "impulse"``) and
+"G" }``); ``[constraints]`` (``type = "pin" | "contact" | "collar" | "knife_edge" | ...``); ``[loads]``
+(``type = "gravity" | "force" | "torque" | "spring" | "torsional_spring" | "rotational_spring" | "damper" |
+"friction" | "impulse" | ...``); ``[inputs]`` (``F = { unit = "N", description = "...", history = "..." }``) and
 ``[ask]``.  Field names are those of the Python API (``System.pin(name, point, body_a, ...)``).
 
 Expressions are strings in the safe expression language (:mod:`rigidkin.io.expressions`) or numbers.
