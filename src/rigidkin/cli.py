@@ -38,6 +38,7 @@ def build_parser() -> argparse.ArgumentParser:
                       "2 bad input or an output that cannot be written, 3 a simulation stopped early (the model "
                       "cannot go on), 4 the time limit (--timeout) reached, 130 interrupted.")
     p.add_argument("--debug", action="store_true", help="show Python tracebacks")
+    p.add_argument("--version", action=_Version, help="print rigidkin's version (and Python's) and exit")
     sub = p.add_subparsers(dest="command", required=True)
     for name in COMMANDS:
         try:
@@ -52,6 +53,29 @@ def build_parser() -> argparse.ArgumentParser:
             if action.dest == "problem":
                 action.completer = complete_problem
     return p
+
+
+def version() -> str:
+    """rigidkin's version as installed (package metadata; no heavy import)."""
+    from importlib.metadata import PackageNotFoundError
+    from importlib.metadata import version as installed
+
+    try:
+        return installed("rigidkin")
+    except PackageNotFoundError:        # run from a source tree that was never installed
+        return "0+unknown (not installed: pip install -e .)"
+
+
+class _Version(argparse.Action):
+    """``--version``: the installed version, read only when asked for."""
+
+    def __init__(self, option_strings, dest, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        v = sys.version_info
+        print(f"rigidkin {version()} (Python {v.major}.{v.minor}.{v.micro})")
+        parser.exit()
 
 
 def complete_problem(prefix: str = "", **_) -> list[str]:
