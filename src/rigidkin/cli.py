@@ -48,6 +48,10 @@ def build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         module.register(sub)
+    for parser in (p, *sub.choices.values()):      # before or after the subcommand
+        parser.add_argument("--ascii", action="store_true", default=argparse.SUPPRESS,
+                            help="print in plain ASCII, readable in any monospace font: rates as primes "
+                                 "(theta', theta''), Greek letters spelled, x^2, a*b (also RIGIDKIN_ASCII=1)")
     for parser in sub.choices.values():
         for action in parser._actions:
             if action.dest == "problem":
@@ -123,6 +127,11 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:            # a refused option (status 2, said on stderr) or --help (0)
         return exc.code if isinstance(exc.code, int) else EXIT_INPUT
+    with _ascii(getattr(args, "ascii", False) or os.environ.get("RIGIDKIN_ASCII", "") not in ("", "0")):
+        return _run(args, argv)
+
+
+def _run(args, argv) -> int:
     try:
         with deadline(getattr(args, "timeout", None), hard_stop=argv is None), _safe_warnings():
             return int(args.func(args) or EXIT_OK)
@@ -152,6 +161,22 @@ def main(argv: list[str] | None = None) -> int:
         say(f"internal error: {type(exc).__name__}: {exc} This is a bug in rigidkin: run again with --debug for "
             "the traceback and report it with the problem file.")
         return EXIT_INPUT
+
+
+@contextlib.contextmanager
+def _ascii(on: bool):
+    """Under ``--ascii`` everything printed (results, messages) is written in plain ASCII."""
+    if not on:
+        yield
+        return
+    from .base.plaintext import AsciiStream
+
+    out, err = sys.stdout, sys.stderr
+    sys.stdout, sys.stderr = AsciiStream(out), AsciiStream(err)
+    try:
+        yield
+    finally:
+        sys.stdout, sys.stderr = out, err
 
 
 @contextlib.contextmanager
