@@ -10,7 +10,6 @@ import json
 import math
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -155,24 +154,8 @@ def test_models_outside_the_route_are_refused_with_the_reason():
     assert numeric_route(chain(3), limit=2) is not None
 
 
-@pytest.mark.parametrize("use_c", [True, False])
-def test_cost_per_rhs_grows_linearly(use_c):
-    def per_call(n):
-        s = chain(n)
-        am = ArticulatedModel(s, use_c=use_c)
-        p = parameter_vector(s, am.layout)
-        y = np.concatenate([np.linspace(0.1, 1.0, 2 * n), [0.0]])
-        am.rates(0.0, y, p)
-        best = math.inf
-        for _ in range(4):
-            t0 = time.perf_counter()
-            for _ in range(6):
-                am.rates(0.0, y, p)
-            best = min(best, time.perf_counter() - t0)
-        return best
-
-    ratio = per_call(40) / per_call(10)
-    assert ratio < 7.0, ratio             # linear: 4 (plus fixed costs); quadratic would be 16
+# The cost of one RHS growing linearly with the chain's length (O(n), C and numpy steps) is measured, not
+# tested: benchmarks/chain_scaling.py prints it against Pinocchio's ABA (a timing ratio is no unit test).
 
 
 def test_chain_past_the_limit_simulates_numerically_with_energy_kept():

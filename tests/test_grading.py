@@ -434,13 +434,13 @@ def test_variants_bad_input(capsys, args, message):
     assert message in capsys.readouterr().err
 
 
-def test_claim_that_would_expand_hugely_is_graded_quickly():
-    import time
+def test_claim_that_would_expand_hugely_is_graded():
+    """A claim whose expansion would be huge is graded without expanding it (its time: benchmarks/grading.py)."""
+    rep = graded("ladder", [{"kind": "balance", "claim": CLAIM_12}])
+    assert rep.steps[0].verdict == "incorrect"
 
-    t0 = time.perf_counter()
-    rep = graded("ladder", [{"kind": "balance", "claim": "N_A*(m + l + g + theta + dot(theta) + sin(theta) + "
-                                                         "cos(theta))**12 = ddot(theta)"}])
-    assert rep.steps[0].verdict == "incorrect" and time.perf_counter() - t0 < 60
+
+CLAIM_12 = "N_A*(m + l + g + theta + dot(theta) + sin(theta) + cos(theta))**12 = ddot(theta)"
 
 
 def test_worksheet_mode_rolling(tmp_path):
