@@ -125,6 +125,7 @@ def test_pin_reactions_and_energy_agree_with_the_symbolic_route():
         assert np.allclose(am.energy(0.0, y, p), model.energy(0.0, y, p), rtol=1e-12, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_relative_angles_springs_torques_and_forces_agree():
     am, p = agree(relative_chain(3))
     assert not am.conservative          # the damping torque and the pushing force do work
@@ -199,6 +200,7 @@ def chain_toml(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
+@pytest.mark.slow
 def test_cli_simulates_a_chain_file_past_the_limit(tmp_path):
     path = tmp_path / "chain.toml"
     path.write_text(chain_toml(SYMBOLIC_LIMIT + 3))

@@ -194,6 +194,7 @@ def test_unknown_problem_exits_2(capsys):
     assert code == 2 and "neither a problem file nor a bundled example" in err and "ladder" in err
 
 
+@pytest.mark.slow
 def test_python_dash_m(tmp_path):
     res = subprocess.run([sys.executable, "-m", "rigidkin", "validate", str(HERE / "ladder.toml")],
                          capture_output=True, text=True, timeout=120)

@@ -217,6 +217,7 @@ def _euler_top(speeds, sequence="313"):
     return s, q
 
 
+@pytest.mark.slow
 def test_closed_form_linearisations_refuse_speeds_that_are_not_rates():
     from rigidkin.analysis import equilibrium, steady
 
