@@ -25,11 +25,12 @@ import warnings
 
 from . import examples
 from .base.errors import RigidkinError
+from .base.plaintext import AsciiStream
 from .base.textsafe import terminal_safe
 from .commands.deadline import TimeLimitReached, deadline
 from .commands.options import EXIT_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_TIME, Parser
 
-COMMANDS = ("solve", "list", "validate", "check", "simulate", "sweep", "report", "grade", "variants")
+COMMANDS = ("solve", "list", "validate", "check", "simulate", "sweep", "report", "draw", "grade", "variants")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -169,8 +170,6 @@ def _ascii(on: bool):
     if not on:
         yield
         return
-    from .base.plaintext import AsciiStream
-
     out, err = sys.stdout, sys.stderr
     sys.stdout, sys.stderr = AsciiStream(out), AsciiStream(err)
     try:

@@ -15,6 +15,7 @@ import unicodedata
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
+from ..base.plaintext import to_ascii
 from ..base.printing import latex
 from ..base.textsafe import markdown_text
 from ..model.speeds import euler_norms
@@ -143,8 +144,6 @@ _MATH_LETTER = re.compile(r"([A-Za-z][\u0307\u0308]|[\u0370-\u03ffµ][\u0307\u03
 
 
 def _greek_tex(letter: str) -> str:
-    from ..base.plaintext import to_ascii
-
     base, marks = letter[0], letter[1:]
     tex = sp.latex(sp.Symbol(to_ascii(base))) if not base.isascii() else base
     return {"\u0307": rf"\dot{{{tex}}}", "\u0308": rf"\ddot{{{tex}}}"}.get(marks, tex)
