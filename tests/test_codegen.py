@@ -206,6 +206,7 @@ def test_c_source_uses_products_for_small_powers(ladder):
     assert os.environ["RIGIDKIN_CACHE"]
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not codegen.c_available(), reason="no C compiler")
 def test_simulator_with_the_c_backend_gives_the_same_motion():
     """rigidkin.numeric.rhs.use_backend(codegen.c_backend): the simulator's functions in C, same events."""

@@ -20,7 +20,8 @@ ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
 FENCE = re.compile(r"(?:<!--\s*file:\s*(?P<file>[\w.\-/]+)\s*-->\n)?```(?P<lang>[\w+-]*)\n(?P<body>.*?)```", re.S)
 # pages whose code takes over ~10 s on 2 shared cores: run by CI's slow pass (pytest -m slow)
-SLOW = {"tutorial.md", "simulation.md", "reports.md", "file-format.md", "bodies.md", "answers.md", "gallery/index.md"}
+SLOW = {"tutorial.md", "simulation.md", "reports.md", "file-format.md", "bodies.md", "answers.md", "gallery/index.md",
+        "constraints.md", "grading.md"}
 
 
 def blocks(path: Path) -> list[tuple[str, str, str | None]]:

@@ -99,6 +99,7 @@ LADDER_BAD = [
 ]
 
 
+@pytest.mark.slow
 def test_ladder_correct_and_mistakes():
     check("ladder", LADDER_OK, LADDER_BAD)
 
@@ -150,6 +151,7 @@ COLLAR_BAD = [
 ]
 
 
+@pytest.mark.slow
 def test_collar_rod_correct_and_mistakes():
     check("collar-rod", COLLAR_OK, COLLAR_BAD)
 
@@ -460,6 +462,7 @@ def test_worksheet_mode_rolling(tmp_path):
 # ẇ; a hand derivation writes Euler's equations on |e| = 1, I1 ẇ1 + (I3 − I1) w2 w3 = M1 with the gravity
 # moment M1 = m g l (b2·Ez) = 2 m g l (e0 e1 + e2 e3).  Graded on unit Euler parameters; a wrong equation
 # is never graded correct (the accelerations ẇ are the unknowns, not a quasi-coordinate's q̈).
+@pytest.mark.slow
 def test_quaternion_top_euler_equations(tmp_path):
     import re
     from pathlib import Path
