@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..base.errors import InputError, RigidkinError
 from ..base.outfile import writing
+from ..base.textsafe import figure_text
 from ..io.load import value
 from .common import guarded, load_system, progress, with_file
 from .options import add_timeout, parse_modes
@@ -79,13 +80,14 @@ def geometry_figure(system, q: dict | None = None, mode=None):
     for name in system.points:
         p = np.asarray(geom.point(name, at), dtype=float)[:2]
         ax.plot(*p, "o", ms=3, color="#b2182b", zorder=5)
-        ax.annotate(name, p, xytext=(4, 4), textcoords="offset points", fontsize=9, color="#b2182b", zorder=5)
+        ax.annotate(figure_text(name), p, xytext=(4, 4), textcoords="offset points", fontsize=9, color="#b2182b",
+                    zorder=5)
     ax.set_aspect("equal")
     ax.margins(0.15)
     ax.set_xlabel("Ex")
     ax.set_ylabel("Ey")
     shown = ", ".join(f"{text(k)} = {v:.4g}" for k, v in at.items() if getattr(k, "args", None))
-    ax.set_title(f"{system.title}\n{shown}", fontsize=10)
+    ax.set_title(figure_text(f"{system.title}\n{shown}"), fontsize=10)
     fig.tight_layout()
     return fig
 
