@@ -11,7 +11,7 @@ from rigidkin.examples import names
 
 # the 3D and multi-contact examples take 10 to 70 s each: run by CI's slow pass (pytest -m slow)
 SLOW = {"chain", "rolling-disk", "torque-free", "gyroscope", "heavy-top", "collar-rod", "slip-to-roll", "collar-force",
-        "disk-in-track"}
+        "disk-in-track", "sphere-on-sphere", "boulder-push", "disk-spring-incline"}
 
 
 def run(argv):

@@ -292,7 +292,8 @@ def belt(m=1.0, k=10.0, v=0.5, mu_s=0.6, mu_k=0.4):
     return s
 
 
-@pytest.mark.parametrize("cycles", [60, pytest.param(1000, marks=pytest.mark.slow)])
+@pytest.mark.slow
+@pytest.mark.parametrize("cycles", [60, 1000])
 def test_stick_slip_limit_cycle_against_the_closed_form(cycles):
     m, k, v, mu_s, mu_k = 1.0, 10.0, 0.5, 0.6, 0.4
     w = math.sqrt(k / m)

@@ -176,6 +176,7 @@ FORCE_BAD = [
 ]
 
 
+@pytest.mark.slow
 def test_collar_force_correct_and_mistakes():
     check("collar-force", FORCE_OK, FORCE_BAD)
 
@@ -204,6 +205,7 @@ DISK_BAD = [
 ]
 
 
+@pytest.mark.slow
 def test_disk_spring_incline_correct_and_mistakes():
     check("disk-spring-incline", DISK_OK, DISK_BAD)
 
@@ -386,6 +388,7 @@ def test_parse_errors_name_line_and_field(tmp_path):
 
 
 # problem sets -------------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_variants_keys_checked_and_moodle_xml(tmp_path, capsys):
     out = tmp_path / "set.xml"
     assert main(["variants", "rod-impulse", "--count", "3", "--seed", "7", "--vary", "m=1:3",
