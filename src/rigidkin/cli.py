@@ -6,7 +6,9 @@ function; this module only assembles them.  Every stop has an exit status that s
 (:mod:`rigidkin.commands.options`): 0 success, 1 a question unanswered or laws that disagree, 2 bad
 input (one paragraph, never a traceback; ``--debug`` shows it), 3 a simulation stopped early because
 the model cannot go on, 4 the time limit, 130 interrupted.  Everything printed to the terminal that
-came from a file or the command line has its control characters escaped.
+came from a file or the command line has its control characters escaped.  ``--ascii`` (before or after
+the subcommand, or ``RIGIDKIN_ASCII=1``) prints everything in plain ASCII (rates as primes: ``theta''``), for
+terminal fonts that put a combining dot on the next letter; ``--version`` prints the installed version.
 
 Shell completion (argcomplete): ``eval "$(register-python-argcomplete rigidkin)"`` in ``~/.bashrc``
 or ``~/.zshrc`` completes subcommands, options, choices and the PROBLEM argument (bundled example
