@@ -73,3 +73,25 @@ def test_bad_options_are_one_paragraph(argv, words, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     code, _, err = _run(argv)
     assert code == 2 and words in err and "Traceback" not in err
+
+
+def test_the_animation_draws_the_rope():
+    """The animation's frames draw the rope (two straight parts and the arc on the pulley), where it was drawn
+    with the bodies only before; the rope's ends are on the blocks, so no ceiling is drawn for it."""
+    import matplotlib.colors as mc
+
+    from rigidkin.numeric.simulate import simulate
+    from rigidkin.report.animate import animate
+    from rigidkin.report.drawing import ROPE
+
+    system, _ = parse_problem(ATWOOD_FILE, "atwood.toml")
+    anim = animate(system, simulate(system, 0.2), frames=3)
+    anim.animation._draw_frame(1)
+    ax = anim.figure.axes[0]
+    rope = [ln for ln in ax.lines if mc.same_color(ln.get_color(), ROPE)]
+    assert len(rope) == 2
+    ends = sorted(tuple(np.round(ln.get_xydata()[0], 9)) for ln in rope)
+    assert [e[0] for e in ends] == pytest.approx([-0.1, 0.1])          # straight down from the rim at x = ∓R
+    assert any(mc.same_color(p.get_edgecolor(), ROPE) for p in ax.patches)  # the arc over the pulley
+    anim.animation._draw_was_started = True          # drawn by hand here: no "deleted without rendering" warning
+    anim.close()
