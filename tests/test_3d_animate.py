@@ -39,6 +39,7 @@ def test_bicycle_wheels_stand_on_the_ground_upright():
     assert len(scene.segments(q)) > 4
 
 
+@pytest.mark.slow
 def test_animation_of_sampled_and_simulated_motion():
     # sampled: the bicycle running straight at 4 m/s
     s = bicycle.build()

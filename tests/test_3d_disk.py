@@ -77,7 +77,7 @@ def test_rolling_gives_nonintegrable_rate_relations(coin):
     assert not algebra.is_zero(sp.diff(cx, psi))
 
 
-@pytest.mark.parametrize("shape", ["disk", "ring"])
+@pytest.mark.parametrize("shape", [pytest.param("disk", marks=pytest.mark.slow), "ring"])
 def test_upright_rolling_stability_threshold(shape, coin):
     s, sol = coin if shape == "disk" else (lambda s: (s, s.solve()))(rolling_disk.build("ring"))
     psi, theta, phi = sol.coordinates

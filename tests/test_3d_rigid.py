@@ -87,6 +87,7 @@ def book():
     return s, s.solve()
 
 
+@pytest.mark.slow
 def test_intermediate_axis_spin_is_unstable_at_the_closed_form_rate(book):
     s, sol = book
     q1, q2, q3, x, y, z = sol.coordinates
@@ -227,6 +228,7 @@ def gyro():
     return s, s.solve()
 
 
+@pytest.mark.slow
 def test_gyroscope_precesses_at_mgl_over_spin_momentum(gyro):
     s, sol = gyro
     psi, th, phi = sol.coordinates
@@ -266,6 +268,7 @@ def test_gyroscope_holds_the_axle_up_only_while_it_spins(gyro):
     assert float(res[th].xreplace(vals)) == pytest.approx(-m * g * l * np.cos(0.2) / (I1 + m * l**2), rel=1e-9)
 
 
+@pytest.mark.slow
 def test_top_about_the_tip_and_by_lagrange_agree_with_the_mass_centre_form(top313):
     """Euler's 2nd law about the fixed tip O (no inertial-moment term: O is fixed) and Lagrange's
     equations give the same motion as Euler's laws about the mass centre."""

@@ -105,6 +105,7 @@ def _slip_to_roll_phases(s):
             Phase("rolling", {"ground": "stick"})]
 
 
+@pytest.mark.slow
 def test_slip_to_roll_in_phases():
     s = build("slip-to-roll")
     x, phi = s.coordinates
@@ -180,6 +181,7 @@ def test_event_that_never_happens():
     assert np.isclose(float(ex.value), -0.5)
 
 
+@pytest.mark.slow
 def test_first_integrals_collar_rod():
     from rigidkin.analysis.integrals import first_integrals
     s = build("collar-rod")
@@ -206,6 +208,7 @@ def _one(sol):
     return dataclasses.replace(sol, regimes=(sol.regimes[0],))
 
 
+@pytest.mark.slow
 def test_numeric_event_by_simulation_two_dof():
     """Collar-rod released from rest at θ0: the rod swings to −θ0 (energy) and the collar has moved
     2 m2 (l/2) sin θ0/(m1 + m2) (horizontal momentum is zero throughout) — both by hand."""
@@ -249,7 +252,8 @@ def test_problem_file_interval_answers(file_answers):
 
 
 @pytest.mark.parametrize("name", ["ladder", "sphere-on-sphere", "disk-in-track", "disk-spring-incline",
-                                  "slip-to-roll", "collar-force", "boulder-push"])
+                                  pytest.param("slip-to-roll", marks=pytest.mark.slow), "collar-force",
+                                  "boulder-push"])
 def test_every_bundled_question_is_answered(file_answers, name):
     s, ans = file_answers(name)
     assert ans and all(a.text and not a.text.startswith("not answered") for a in ans.values())

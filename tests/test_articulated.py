@@ -10,7 +10,6 @@ import json
 import math
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -126,6 +125,7 @@ def test_pin_reactions_and_energy_agree_with_the_symbolic_route():
         assert np.allclose(am.energy(0.0, y, p), model.energy(0.0, y, p), rtol=1e-12, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_relative_angles_springs_torques_and_forces_agree():
     am, p = agree(relative_chain(3))
     assert not am.conservative          # the damping torque and the pushing force do work
@@ -155,24 +155,8 @@ def test_models_outside_the_route_are_refused_with_the_reason():
     assert numeric_route(chain(3), limit=2) is not None
 
 
-@pytest.mark.parametrize("use_c", [True, False])
-def test_cost_per_rhs_grows_linearly(use_c):
-    def per_call(n):
-        s = chain(n)
-        am = ArticulatedModel(s, use_c=use_c)
-        p = parameter_vector(s, am.layout)
-        y = np.concatenate([np.linspace(0.1, 1.0, 2 * n), [0.0]])
-        am.rates(0.0, y, p)
-        best = math.inf
-        for _ in range(4):
-            t0 = time.perf_counter()
-            for _ in range(6):
-                am.rates(0.0, y, p)
-            best = min(best, time.perf_counter() - t0)
-        return best
-
-    ratio = per_call(40) / per_call(10)
-    assert ratio < 7.0, ratio             # linear: 4 (plus fixed costs); quadratic would be 16
+# The cost of one RHS growing linearly with the chain's length (O(n), C and numpy steps) is measured, not
+# tested: benchmarks/chain_scaling.py prints it against Pinocchio's ABA (a timing ratio is no unit test).
 
 
 def test_chain_past_the_limit_simulates_numerically_with_energy_kept():
@@ -216,6 +200,7 @@ def chain_toml(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
+@pytest.mark.slow
 def test_cli_simulates_a_chain_file_past_the_limit(tmp_path):
     path = tmp_path / "chain.toml"
     path.write_text(chain_toml(SYMBOLIC_LIMIT + 3))

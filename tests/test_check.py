@@ -1,5 +1,6 @@
 """Cross-check: every law that applies, compared; disagreements and wrong expectations are caught."""
 
+import pytest
 import sympy as sp
 from sympy import cos, sin
 from sympy.physics.vector import dynamicsymbols
@@ -19,6 +20,7 @@ def _by_law(report):
     return out
 
 
+@pytest.mark.slow
 def test_disk_in_track_five_ways_agree():
     rep = build("disk-in-track").solve().check()
     laws = _by_law(rep)
@@ -70,6 +72,7 @@ def test_compare_decides_symbolically_or_numerically():
     assert not numerically_equal(sin(x), sin(x) + 1e-6)
 
 
+@pytest.mark.slow
 def test_expectation_equivalent_and_wrong():
     s = build("collar-force")
     m, l, g, P = (s.parameters[n] for n in ["m", "l", "g", "P"])

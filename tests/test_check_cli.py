@@ -9,7 +9,9 @@ import pytest
 from rigidkin.cli import main
 from rigidkin.examples import names
 
-SLOW = {"chain", "rolling-disk"}
+# the 3D and multi-contact examples take 10 to 70 s each: run by CI's slow pass (pytest -m slow)
+SLOW = {"chain", "rolling-disk", "torque-free", "gyroscope", "heavy-top", "collar-rod", "slip-to-roll", "collar-force",
+        "disk-in-track", "sphere-on-sphere", "boulder-push", "disk-spring-incline"}
 
 
 def run(argv):

@@ -7,6 +7,7 @@ and the bundled examples' names (its test variables: no shell needed).
 
 from __future__ import annotations
 
+import ast
 import os
 import subprocess
 import sys
@@ -85,3 +86,18 @@ def test_units_load_without_dask_and_keep_pints_definitions(tmp_path):
         assert out[1] == "dask imports True"
     kept = tmp_path / "cache" / "pint"
     assert kept.is_dir() and any(kept.rglob("*")) and (kept.stat().st_mode & 0o077) == 0
+
+
+def test_version_is_the_installed_metadata_and_loads_no_heavy_library():
+    """``rigidkin --version`` prints the version pip installed (importlib.metadata, the independent source)
+    and exits 0, importing no heavy library."""
+    from importlib.metadata import version
+
+    code = ("import contextlib, io, sys\nfrom rigidkin.cli import main\nbuf = io.StringIO()\n"
+            "with contextlib.redirect_stdout(buf): status = main(['--version'])\n"
+            "sys.stderr.write(repr((status, buf.getvalue())))")
+    res = subprocess.run([sys.executable, "-c", code + "\nimport sys; print(' '.join(sys.modules))"],
+                         capture_output=True, text=True, timeout=60, check=True)
+    status, printed = ast.literal_eval(res.stderr)
+    assert status == 0 and printed.startswith(f"rigidkin {version('rigidkin')} (Python ")
+    assert not {m.split(".")[0] for m in res.stdout.split()} & set(HEAVY)

@@ -43,6 +43,7 @@ def test_report_set_and_at_in_both_forms_write_the_same_document(tmp_path):
     assert "3" in a.read_text()
 
 
+@pytest.mark.slow
 def test_variants_vary_in_both_forms(capsys):
     base = ["variants", "rod-impulse", "--count", "2", "--seed", "3", "--format", "json"]
     assert main([*base, "--vary", "m=1:3", "F_hat=0.5:2"]) == 0
@@ -60,6 +61,7 @@ def test_simulate_set_both_forms(argv, capsys):
     json.loads(capsys.readouterr().out)
 
 
+@pytest.mark.slow
 def test_sweep_stops_at_the_event_simulate_names(capsys, tmp_path):
     """simulate --json names the wall leaving 'contact A opens'; sweep --stop-at takes that name as well as N_A."""
     assert main(["simulate", "ladder", "--t-end", "2", "--json", "--points", "5"]) == 0

@@ -94,6 +94,7 @@ def kane_chain(n: int):
     return km.mass_matrix, km.forcing, q, u, (m, l, g)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("form", ["implicit", "auto"])
 def test_chain_matches_kanes_method(form):
     """The implicit and mass-matrix kernels (LU in C) give KanesMethod's accelerations M⁻¹ f for a chain."""
@@ -114,6 +115,7 @@ def test_chain_matches_kanes_method(form):
         np.testing.assert_allclose(dy[n:], acc, rtol=1e-9, atol=1e-9)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("form", ["implicit", "mass-matrix"])
 def test_chain_pin_reaction_equals_momentum_balance(form):
     """At rest, the fixed pin carries R_O = Σ m a_G + n m g Ey (Euler's 1st law for the whole chain)."""
@@ -204,6 +206,7 @@ def test_c_source_uses_products_for_small_powers(ladder):
     assert os.environ["RIGIDKIN_CACHE"]
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not codegen.c_available(), reason="no C compiler")
 def test_simulator_with_the_c_backend_gives_the_same_motion():
     """rigidkin.numeric.rhs.use_backend(codegen.c_backend): the simulator's functions in C, same events."""

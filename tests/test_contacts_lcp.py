@@ -204,6 +204,7 @@ def hand_impact(m, I, points, u0, e, mu):
     return sols[0]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mu,e", [(0.8, 0.0), (0.1, 0.0), (0.8, 0.5)])
 def test_rod_dropped_at_an_angle_onto_a_rough_floor(mu, e):
     m, length, theta0, drop = 1.5, 1.2, math.radians(30), 0.3
@@ -225,6 +226,7 @@ def test_rod_dropped_at_an_angle_onto_a_rough_floor(mu, e):
     assert T(ev.after) <= T(ev.state)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("e", [0.0, 0.5])
 def test_rod_falling_flat_onto_two_supports_takes_both_impulses_at_once(e):
     m, length, drop, (a, b) = 1.5, 1.2, 0.2, (0.5, 0.2)
@@ -245,6 +247,7 @@ def test_rod_falling_flat_onto_two_supports_takes_both_impulses_at_once(e):
 
 
 # (c) the contact problem over all contacts: Painlevé's paradox is reported, not guessed ----------------
+@pytest.mark.slow
 def test_painleve_rod_reported_with_the_critical_coefficient():
     from rigidkin.numeric.contacts.contact_modes import ContactParadox
 
@@ -289,7 +292,8 @@ def belt(m=1.0, k=10.0, v=0.5, mu_s=0.6, mu_k=0.4):
     return s
 
 
-@pytest.mark.parametrize("cycles", [60, pytest.param(1000, marks=pytest.mark.slow)])
+@pytest.mark.slow
+@pytest.mark.parametrize("cycles", [60, 1000])
 def test_stick_slip_limit_cycle_against_the_closed_form(cycles):
     m, k, v, mu_s, mu_k = 1.0, 10.0, 0.5, 0.6, 0.4
     w = math.sqrt(k / m)
@@ -315,6 +319,7 @@ def test_stick_slip_limit_cycle_against_the_closed_form(cycles):
     assert all(e.state["x"] == pytest.approx(2 * x_k - x_s, abs=1e-9) for e in ev[2::2])
 
 
+@pytest.mark.slow
 def test_identical_runs_give_identical_events_bit_for_bit():
     s = belt()
     runs = [simulate(s, 6.0, n_points=11) for _ in range(20)]
@@ -365,6 +370,7 @@ def pushed_box(mu_s, mu_k, b=0.5, h=1.0, d=0.4, c=2.0, m=1.0):
     return s
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mu_s", [0.3, pytest.param(0.8, marks=pytest.mark.slow)])
 def test_box_pushed_at_height_slides_or_tips_first(mu_s):
     b, h, d, c, m = 0.5, 1.0, 0.4, 2.0, 1.0
@@ -394,6 +400,7 @@ def test_statically_indeterminate_rest_is_reported_with_what_is_determined():
     assert any("statically indeterminate" in step.title for step in held.setup.trace.steps)
 
 
+@pytest.mark.slow
 def test_painleve_non_uniqueness_is_reported_not_guessed():
     from rigidkin.numeric.contacts.contact_modes import ContactParadox
 
@@ -445,6 +452,7 @@ def leaning_rod(mu_s, mu_k, theta0, m=10.0, l=2.0):
     return s
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mu_s", [0.4, 0.2])
 def test_rod_leaning_on_a_rough_floor_stays_when_tan_theta_within_2_mu_s(mu_s):
     theta0, m = 0.6, 10.0

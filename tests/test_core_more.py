@@ -188,6 +188,7 @@ def _four_bar():
     return s
 
 
+@pytest.mark.slow
 def test_four_bar_linkage_closed_loop():
     """A four-bar linkage: the loop closure relates the rates; the accelerations against LagrangesMethod with
     the two closure equations as holonomic constraints; simulated, the loop stays closed and energy constant."""

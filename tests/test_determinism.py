@@ -24,6 +24,7 @@ def solve_json(name: str, seed: str) -> bytes:
     return done.stdout
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["ladder", pytest.param("disk-in-track", marks=pytest.mark.slow),
                                   pytest.param("collar-rod", marks=pytest.mark.slow)])
 def test_same_bytes_under_every_hash_seed(name):

@@ -19,7 +19,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
 FENCE = re.compile(r"(?:<!--\s*file:\s*(?P<file>[\w.\-/]+)\s*-->\n)?```(?P<lang>[\w+-]*)\n(?P<body>.*?)```", re.S)
-SLOW = {"tutorial.md", "simulation.md", "reports.md"}
+# pages whose code takes over ~10 s on 2 shared cores: run by CI's slow pass (pytest -m slow)
+SLOW = {"tutorial.md", "simulation.md", "reports.md", "file-format.md", "bodies.md", "answers.md", "gallery/index.md",
+        "constraints.md", "grading.md"}
 
 
 def blocks(path: Path) -> list[tuple[str, str, str | None]]:
@@ -29,7 +31,7 @@ def blocks(path: Path) -> list[tuple[str, str, str | None]]:
 def documents() -> list:
     out = []
     for p in sorted(DOCS.rglob("*.md")):
-        marks = [pytest.mark.slow] if p.name in SLOW else []
+        marks = [pytest.mark.slow] if p.name in SLOW or p.relative_to(DOCS).as_posix() in SLOW else []
         out.append(pytest.param(p, id=str(p.relative_to(DOCS)), marks=marks))
     return out
 

@@ -107,6 +107,8 @@ def test_site_builds_strictly(tmp_path):
     assert (site / "gallery" / "ladder-fbd.svg").exists()
     api = (site / "api" / "model" / "index.html").read_text(encoding="utf-8")
     assert "rigidkin.model.system.System.solve" in api
+    for inherited in ("pin", "contact", "rope", "gravity", "spring"):       # from the System's mixins
+        assert f'id="rigidkin.model.system.System.{inherited}"' in api, inherited
 
 
 def test_readme_says_how_to_serve_the_site():
@@ -117,3 +119,51 @@ def test_readme_says_how_to_serve_the_site():
     extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]
     named = {d.split(">")[0].split("~")[0] for d in extras["docs"]}
     assert {"mkdocs", "mkdocs-material", "mkdocstrings[python]"} <= named
+
+
+def _documented_classes() -> list[str]:
+    """The classes a ``::: path`` directive of docs/api puts on a page."""
+    import importlib
+    import inspect
+
+    out = []
+    for page in sorted((DOCS / "api").glob("*.md")):
+        for line in page.read_text(encoding="utf-8").splitlines():
+            if line.startswith("::: "):
+                module, _, name = line[4:].strip().rpartition(".")
+                try:
+                    obj = getattr(importlib.import_module(module), name)
+                except (ImportError, AttributeError):
+                    continue
+                if inspect.isclass(obj):
+                    out.append(line[4:].strip())
+    return out
+
+
+def test_api_reference_shows_inherited_methods():
+    """Every public method of every documented class is on its page, the ones it inherits from rigidkin's
+    mixins included (System's pin, contact, rope, gravity, spring ...): the handler is told to show inherited
+    members, no page turns that off, and griffe (what mkdocstrings reads) finds every method Python's own
+    method resolution finds."""
+    griffe = pytest.importorskip("griffe")
+    import importlib
+    import inspect
+
+    options = _config()["plugins"][1]["mkdocstrings"]["handlers"]["python"]["options"]
+    assert options.get("inherited_members") is True
+    for page in (DOCS / "api").glob("*.md"):
+        assert "inherited_members: false" not in page.read_text(encoding="utf-8"), page.name
+    loader = griffe.GriffeLoader(search_paths=[str(ROOT / "src")])
+    package = loader.load("rigidkin")
+    loader.resolve_aliases(implicit=False, external=False)
+    classes = _documented_classes()
+    assert "rigidkin.model.system.System" in classes
+    for path in classes:
+        module, _, name = path.rpartition(".")
+        cls = getattr(importlib.import_module(module), name)
+        ours = {n for k in cls.__mro__ if k.__module__.startswith("rigidkin") for n, v in vars(k).items()
+                if not n.startswith("_") and (inspect.isfunction(v) or isinstance(v, property | classmethod))}
+        shown = {n for n in package[path.removeprefix("rigidkin.")].all_members if not n.startswith("_")}
+        assert ours <= shown, f"{path}: methods missing from its API page: {sorted(ours - shown)}"
+    system = set(package["model.system.System"].all_members)
+    assert {"pin", "contact", "rope", "gravity", "spring", "solve"} <= system

@@ -247,6 +247,7 @@ def test_tippe_top_inverts_losing_energy_only_by_friction_work():
     assert abs(work - W[-1]) < 1e-4 * abs(W[-1])
 
 
+@pytest.mark.slow
 def test_rolling_eliminates_the_centres_rates_not_the_body_speeds():
     """Rolling on a ball: the no-slip rows are the identity in the centre's rates at every state, but singular in
     two body angular speeds wherever the third body axis is horizontal (the tippe top stalled there, spinning

@@ -511,6 +511,7 @@ def _toml(value) -> str:
     return repr(value)
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(field=_FIELD, data=st.data())
 def test_hypothesis_fields(field, data):

@@ -5,6 +5,7 @@ import pytest
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
+from rigidkin.base.errors import RigidkinError
 from rigidkin.examples import HERE, build, names
 from rigidkin.io.expressions import slip
 from rigidkin.io.problem import load_problem
@@ -129,6 +130,21 @@ def test_units_are_converted(tmp_path):
     assert s.parameter_info["beta"].value == pytest.approx(20 * 3.141592653589793 / 180)
     assert s.parameter_info["L0"].value == pytest.approx(0.5)
     assert s.parameter_info["L0"].dimension == build("disk-spring-incline").parameter_info["L0"].dimension
+
+
+def test_a_duration_takes_a_unit_and_its_dimension_is_checked(tmp_path):
+    """``duration = "100 ms"`` is the parameter dt = 0.1 s written as a quantity; "0.1 m" is refused, naming
+    the field."""
+    text = (HERE / "paper-pull.toml").read_text()
+    assert 'duration = "dt"' in text
+    f = tmp_path / "p.toml"
+    f.write_text(text.replace('duration = "dt"', 'duration = "100 ms"'))
+    _, spec = load_problem(f)
+    assert float(spec.questions[0].fields["duration"]) == pytest.approx(0.1, rel=1e-15)
+    f.write_text(text.replace('duration = "dt"', 'duration = "0.1 m"'))
+    with pytest.raises(RigidkinError) as err:
+        load_problem(f)
+    assert "duration" in str(err.value)
 
 
 def test_minimal_pendulum_matches_the_closed_form(tmp_path):

@@ -53,6 +53,7 @@ def test_solution_bundle_shows_dots_for_mathjax(ladder):
     assert ".jp-RenderedHTMLCommon .rigidkin .rk-mathml{display:none}" in html
 
 
+@pytest.mark.slow
 def test_system_and_result_bundles(ladder):
     data = _bundle(ladder)
     spans = _tex_spans(data["text/html"])
@@ -90,6 +91,7 @@ def _plotted(fig) -> list[tuple]:
             for ln in ax.lines]
 
 
+@pytest.mark.slow
 def test_sliders_resimulate_and_redraw(ladder):
     pytest.importorskip("ipywidgets")
     import rigidkin as rk
@@ -173,6 +175,7 @@ def test_stylesheet_shows_tex_in_jupyter_and_mathml_elsewhere(ladder, tmp_path):
     assert not any(shown["plain", "rk-tex"]) and all(shown["plain", "rk-mathml"])
 
 
+@pytest.mark.slow
 def test_start_sliders(ladder):
     pytest.importorskip("ipywidgets")
     from rigidkin.report.widgets import explore

@@ -181,7 +181,7 @@ def _answers(system, spec):
     return out
 
 
-SCHEMA_NAMES = [n if n not in ("chain", "slip-to-roll", "paper-pull", "boulder-push")
+SCHEMA_NAMES = [n if n not in ("chain", "slip-to-roll", "paper-pull", "boulder-push", "gyroscope")
                 else pytest.param(n, marks=pytest.mark.slow) for n in examples.names() if n != "bicycle"]
 
 

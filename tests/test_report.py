@@ -68,7 +68,7 @@ def test_dyadic_latex_and_labels():
     sol = examples.build("ladder").solve()
     step = [s for s in sol.trace.steps if s.title.startswith("Inertia and angular momentum")][0]
     tex = latex(step.equations[0])
-    assert r"\frac{l^{2} m}{12}\,\mathbf{e}_{x}\otimes \mathbf{e}_{x}" in tex
+    assert r"\frac{m l^{2}}{12}\,\mathbf{e}_{x}\otimes \mathbf{e}_{x}" in tex      # m l², the mass first
     assert split_label("normal_reaction_N_A") == ("normal reaction", "N_A")
     assert split_label("weight_of_rod") == ("weight of rod", "")
     assert split_label("omega_rod") == ("", "omega_rod")

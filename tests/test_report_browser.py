@@ -30,7 +30,9 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-ne
          "--disable-component-update", "--no-first-run"]
 
 playwright = pytest.importorskip("playwright.sync_api", reason="Playwright (pip install playwright) is not installed")
-pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (apt-get install chromium)")
+# a report rendered in Chromium takes half a minute on 2 shared cores: CI's slow pass runs it (pytest -m slow)
+pytestmark = [pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (apt-get install chromium)"),
+              pytest.mark.slow]
 
 
 @pytest.fixture(scope="module")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 import xml.dom.minidom
 
+import pytest
 import sympy as sp
 
 from rigidkin import examples
@@ -39,6 +40,7 @@ def test_solution_shows_equations_and_reactions():
     assert sp.simplify(sol.accelerations[th] - 2 * g * sp.sin(th) / (3 * (r - R))) == 0
 
 
+@pytest.mark.slow
 def test_simulation_result_shows_events_and_figures():
     s = examples.build("ladder")
     res = simulate(s, 1.0, initial_state={"theta": 0.4})

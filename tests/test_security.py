@@ -166,6 +166,7 @@ def test_every_command_on_a_hostile_file_runs_no_user_text(hostile, watch, capsy
     """solve (text, JSON, LaTeX), check, simulate, sweep and report (HTML, Markdown, LaTeX) on the file."""
     path, marker = hostile
     for argv in (["solve", path], ["solve", path, "--format", "json"], ["solve", path, "--format", "latex"],
+                 ["solve", path, "--format", "markdown"], ["draw", path, "-o", "drawing.svg"],
                  ["check", path], ["simulate", path, "--t-end", "0.2", "--csv", "sim.csv", "--points", "21"],
                  ["sweep", path, "--param", "l=0.4:0.6:3", "--t-end", "0.2", "-o", "sweep.csv", "--threads", "2",
                   "--backend", "c"],

@@ -113,7 +113,7 @@ def top():
     return ProjectedModel(_top())
 
 
-@pytest.mark.parametrize("ratio, sleeps", [(1.6, True), (0.64, False)])
+@pytest.mark.parametrize("ratio, sleeps", [pytest.param(1.6, True, marks=pytest.mark.slow), (0.64, False)])
 def test_sleeping_top_started_upright(top, ratio, sleeps):
     """Exactly upright (e = 1, nutation zero) with a transverse rate of 1 mrad/s: above the threshold the
     axis stays within 1e-3 rad of the vertical for 2 s; below it the top falls (tilt > 1 rad).  Energy
@@ -217,6 +217,7 @@ def _euler_top(speeds, sequence="313"):
     return s, q
 
 
+@pytest.mark.slow
 def test_closed_form_linearisations_refuse_speeds_that_are_not_rates():
     from rigidkin.analysis import equilibrium, steady
 

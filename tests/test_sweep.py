@@ -178,6 +178,7 @@ def test_cli_errors_are_one_paragraph(tmp_path, capsys, argv, message):
     assert code == 2 and message in err and "Traceback" not in err
 
 
+@pytest.mark.slow
 def test_each_run_starts_in_its_own_friction_regime_and_stops_when_it_ends():
     """Boulder-push: sliding friction at the plate opposes ẋ; moving down, the boulder stops at t = |v0|/a."""
     s = rk.examples.build("boulder-push")

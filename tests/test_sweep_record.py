@@ -152,6 +152,7 @@ def test_a_changed_file_is_never_answered_from_an_old_record(cache, tmp_path, ca
     assert len(set((cache / "derivations").glob("*.rec")) - before) == 1       # a new record for the new content
 
 
+@pytest.mark.slow
 def test_the_repeat_imports_no_sympy(tmp_path):
     env = {**os.environ, "RIGIDKIN_CACHE": str(tmp_path / "cache")}
     env.pop("RIGIDKIN_NO_CACHE", None)

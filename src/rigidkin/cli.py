@@ -6,7 +6,9 @@ function; this module only assembles them.  Every stop has an exit status that s
 (:mod:`rigidkin.commands.options`): 0 success, 1 a question unanswered or laws that disagree, 2 bad
 input (one paragraph, never a traceback; ``--debug`` shows it), 3 a simulation stopped early because
 the model cannot go on, 4 the time limit, 130 interrupted.  Everything printed to the terminal that
-came from a file or the command line has its control characters escaped.
+came from a file or the command line has its control characters escaped.  ``--ascii`` (before or after
+the subcommand, or ``RIGIDKIN_ASCII=1``) prints everything in plain ASCII (rates as primes: ``theta''``), for
+terminal fonts that put a combining dot on the next letter; ``--version`` prints the installed version.
 
 Shell completion (argcomplete): ``eval "$(register-python-argcomplete rigidkin)"`` in ``~/.bashrc``
 or ``~/.zshrc`` completes subcommands, options, choices and the PROBLEM argument (bundled example
@@ -25,11 +27,12 @@ import warnings
 
 from . import examples
 from .base.errors import RigidkinError
+from .base.plaintext import AsciiStream
 from .base.textsafe import terminal_safe
 from .commands.deadline import TimeLimitReached, deadline
 from .commands.options import EXIT_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_TIME, Parser
 
-COMMANDS = ("solve", "list", "validate", "check", "simulate", "sweep", "report", "grade", "variants")
+COMMANDS = ("solve", "list", "validate", "check", "simulate", "sweep", "report", "draw", "grade", "variants")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -38,6 +41,7 @@ def build_parser() -> argparse.ArgumentParser:
                       "2 bad input or an output that cannot be written, 3 a simulation stopped early (the model "
                       "cannot go on), 4 the time limit (--timeout) reached, 130 interrupted.")
     p.add_argument("--debug", action="store_true", help="show Python tracebacks")
+    p.add_argument("--version", action=_Version, help="print rigidkin's version (and Python's) and exit")
     sub = p.add_subparsers(dest="command", required=True)
     for name in COMMANDS:
         try:
@@ -47,11 +51,38 @@ def build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         module.register(sub)
+    for parser in (p, *sub.choices.values()):      # before or after the subcommand
+        parser.add_argument("--ascii", action="store_true", default=argparse.SUPPRESS,
+                            help="print in plain ASCII, readable in any monospace font: rates as primes "
+                                 "(theta', theta''), Greek letters spelled, x^2, a*b (also RIGIDKIN_ASCII=1)")
     for parser in sub.choices.values():
         for action in parser._actions:
             if action.dest == "problem":
                 action.completer = complete_problem
     return p
+
+
+def version() -> str:
+    """rigidkin's version as installed (package metadata; no heavy import)."""
+    from importlib.metadata import PackageNotFoundError
+    from importlib.metadata import version as installed
+
+    try:
+        return installed("rigidkin")
+    except PackageNotFoundError:        # run from a source tree that was never installed
+        return "0+unknown (not installed: pip install -e .)"
+
+
+class _Version(argparse.Action):
+    """``--version``: the installed version, read only when asked for."""
+
+    def __init__(self, option_strings, dest, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        v = sys.version_info
+        print(f"rigidkin {version()} (Python {v.major}.{v.minor}.{v.micro})")
+        parser.exit()
 
 
 def complete_problem(prefix: str = "", **_) -> list[str]:
@@ -99,6 +130,11 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:            # a refused option (status 2, said on stderr) or --help (0)
         return exc.code if isinstance(exc.code, int) else EXIT_INPUT
+    with _ascii(getattr(args, "ascii", False) or os.environ.get("RIGIDKIN_ASCII", "") not in ("", "0")):
+        return _run(args, argv)
+
+
+def _run(args, argv) -> int:
     try:
         with deadline(getattr(args, "timeout", None), hard_stop=argv is None), _safe_warnings():
             return int(args.func(args) or EXIT_OK)
@@ -128,6 +164,20 @@ def main(argv: list[str] | None = None) -> int:
         say(f"internal error: {type(exc).__name__}: {exc} This is a bug in rigidkin: run again with --debug for "
             "the traceback and report it with the problem file.")
         return EXIT_INPUT
+
+
+@contextlib.contextmanager
+def _ascii(on: bool):
+    """Under ``--ascii`` everything printed (results, messages) is written in plain ASCII."""
+    if not on:
+        yield
+        return
+    out, err = sys.stdout, sys.stderr
+    sys.stdout, sys.stderr = AsciiStream(out), AsciiStream(err)
+    try:
+        yield
+    finally:
+        sys.stdout, sys.stderr = out, err
 
 
 @contextlib.contextmanager

@@ -20,7 +20,8 @@ def register(sub) -> None:
     p.add_argument("--method", default="newton-euler",
                    help=f"the balance law to derive with: {', '.join(METHODS)} (about-point:POINT names the point; "
                         "default newton-euler)")
-    p.add_argument("--format", default="text", choices=("text", "latex", "json"), help="output format")
+    p.add_argument("--format", default="text", choices=("text", "latex", "markdown", "json"),
+                   help="output format: latex and markdown say all the text does (accelerations, conditions, numbers)")
     p.add_argument("--no-answers", action="store_true", help="skip the questions in the file's [ask]")
     p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="the state of a contact: open, slip or stick (repeatable); a mode at rest (every "
@@ -59,61 +60,6 @@ def answer_questions(system, spec, args, derived=None) -> tuple[dict, list[str]]
     if derived is not None and not any(isinstance(a, str) for a in answers.values()):
         derived.answers = dict(answers)        # a failed answer (a time limit, say) is not kept
     return answers, []
-
-
-_TEX = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{",
-        "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}"}
-
-
-def _tex(text: str) -> str:
-    """Plain text for LaTeX (special characters escaped)."""
-    return "".join(_TEX.get(ch, ch) for ch in str(text))
-
-
-_REL = {">": ">", "<": "<", ">=": r"\geq", "<=": r"\leq"}
-
-
-def latex_text(sol, spec, answers) -> str:
-    import sympy as sp
-
-    from ..base.printing import latex
-    from ..model.speeds import euler_norms
-    from ..report.text import reaction_labels
-
-    s = sol.system
-    out = [rf"\section*{{{_tex(s.title)}}}", r"\paragraph{Coordinates}", r"\begin{itemize}"]
-    for c in s.coordinate_info.values():
-        role = "" if c.symbol in sol.coordinates else " (dependent)"
-        out.append(rf"\item ${latex(c.symbol)}${role}: {_tex(c.sense)}")
-    out.append(r"\end{itemize}")
-    labels = reaction_labels(s)
-    shown = spec.reactions if spec is not None and spec.reactions is not None else None
-    for i, r in enumerate(sol.regimes):
-        if len(sol.regimes) > 1:
-            conds = r" \text{ and } ".join(f"{latex(c.expr)} {_REL[c.relation]} 0" for c in r.conditions)
-            out.append(rf"\paragraph{{Regime {i + 1}}} while ${conds}$")
-        out += [r"\paragraph{Equations of motion}"]
-        out += [rf"(the Euler parameters of {frame} normalised, ${latex(n)} = 1$)"
-                for frame, n in euler_norms(sol.system)]
-        out += [r"\begin{align*}"]
-        out.append(" \\\\\n".join(f"{latex(e)} &= 0" for e in r.eom))
-        out += [r"\end{align*}", r"\paragraph{Reactions}", r"\begin{align*}"]
-        names = [k for k in (shown if shown is not None else r.reactions) if k in r.reactions]
-        out.append(" \\\\\n".join(f"{latex(sp.Symbol(k))} &= {latex(r.reactions[k])}"
-                                  f" && \\text{{{_tex(labels.get(k, ''))}}}" for k in names))
-        out.append(r"\end{align*}")
-    if answers:
-        out += [r"\paragraph{Answers}", r"\begin{itemize}"]
-        for name, a in answers.items():
-            name_tex = _tex(name)
-            if isinstance(a, str):
-                out.append(rf"\item {name_tex}: not answered ({_tex(a)})")
-            elif hasattr(a.value, "free_symbols"):
-                out.append(rf"\item {name_tex}: ${latex(a.value)}$")
-            else:
-                out.append(rf"\item {name_tex}: {_tex(a.text)}")
-        out.append(r"\end{itemize}")
-    return "\n".join(out)
 
 
 def run(args) -> int:
@@ -158,8 +104,11 @@ def _solve(args) -> tuple[str, int]:
             if args.format == "json":
                 text = json_safe(json.dumps(guarded(args, solution_data, sol, spec, answers, notes), indent=2,
                                             ensure_ascii=False))
-            elif args.format == "latex":
-                text = terminal_safe(guarded(args, latex_text, sol, spec, answers))
+            elif args.format in ("latex", "markdown"):
+                from . import solve_formats
+
+                write = solve_formats.to_latex if args.format == "latex" else solve_formats.to_markdown
+                text = terminal_safe(guarded(args, write, sol, spec, answers, notes))
             else:
                 text = terminal_safe(guarded(args, problem_text, sol, spec, answers, notes))
     except RigidkinError as exc:

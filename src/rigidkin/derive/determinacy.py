@@ -68,6 +68,7 @@ def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "
             f"the balance laws give {len(labels)} equations for {n} unknowns "
             f"({', '.join(text(u) for u in unknowns)}), and {'; '.join(bad)} contradict the others.",
             hint="The coordinates hold back motions that no constraint enforces: a constraint (with its "
-                 "reaction) is missing, or a load has no reaction to carry it. "
-                 f"{dof_note}")
+                 "reaction) is missing, or a load has no reaction to carry it; or the geometry is not what was "
+                 "meant: a rope wrapped round a pulley in the wrong sense, a point on the wrong side (see it with "
+                 f"'rigidkin draw FILE', which draws the geometry and free-body diagrams without solving). {dof_note}")
     return keep

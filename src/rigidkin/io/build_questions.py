@@ -113,7 +113,9 @@ class Questions:
                 f[key] = v
             elif key == "coordinate":
                 f[key] = self._lookup(self.scope.coordinates, "coordinate", v, kpath)
-            elif key in ("duration", "expression"):
+            elif key == "duration":            # "0.5 s" as well as "dt" or 0.5 (seconds)
+                f[key] = self.value(v, kpath, TIME)
+            elif key == "expression":
                 f[key] = parse_scalar(v, qs, self.where(*kpath))
             elif key == "over":
                 f[key] = tuple(self.value(x, kpath + (i,)) for i, x in enumerate(v))

@@ -20,7 +20,7 @@ import numpy as np  # noqa: E402
 from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
 
 from ..base.textsafe import figure_text  # noqa: E402
-from .drawing import draw_body, draw_surfaces  # noqa: E402
+from .drawing import draw_body, draw_ropes, draw_surfaces  # noqa: E402
 from .geometry import Geometry, body_size  # noqa: E402
 from .geometry import t as time_symbol  # noqa: E402
 from .html import offline_player  # noqa: E402
@@ -111,6 +111,7 @@ def animate(system, result, frames: int = 80, duration: float | None = None, siz
         ax.clear()
         q = states[i]
         draw_surfaces(ax, geom, q, width)
+        draw_ropes(ax, geom, q)                 # strings, ropes, belts and their fixed ends (a ceiling)
         for b in system.bodies.values():
             if trail and i > 0:
                 c = centres[b.name][: i + 1]

@@ -224,3 +224,66 @@ def draw_surfaces(ax, geom: Geometry, q, span: float, alpha: float = 1.0, only=N
             p0, p1 = p + a * (s_body - span), p + a * (s_body + span)
             out.append(ax.plot(*np.array([p0, p1]).T, color=SURFACE, lw=3, alpha=0.6 * alpha, zorder=0.6)[0])
     return out
+
+
+ROPE = "#7a4b1e"
+
+
+def _rope_segments(geom: Geometry, rope, q) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The tangent points (Q_i, Q_j) of each straight segment of a rope over pulleys (model.ropes: with signed
+    radii a, b and d = C_j − C_i, n = ((a − b) d − L Ez × d)/|d|², Q_i = C_i + a n, Q_j = C_j + b n)."""
+    out = []
+    for si, sj in zip(rope.stations, rope.stations[1:]):
+        ci, cj = _xy(geom.point(si.point, q)), _xy(geom.point(sj.point, q))
+        a, b = geom.number(si.signed_radius), geom.number(sj.signed_radius)
+        d = cj - ci
+        d2 = float(d @ d)
+        if d2 < 1e-24 or d2 < (a - b) ** 2:
+            continue
+        ez_d = np.array([-d[1], d[0]])
+        n = ((a - b) * d - np.sqrt(d2 - (a - b) ** 2) * ez_d) / d2
+        out.append((ci + a * n, cj + b * n))
+    return out
+
+
+def _anchor(ax, p, away, size, zorder):
+    """A fixed end: a short hatched ceiling (or wall) across the rope at ``p``, on the side ``away``."""
+    u = _unit(away)
+    w = np.array([-u[1], u[0]])
+    p0, p1 = p - w * size, p + w * size
+    ax.plot(*np.array([p0, p1]).T, color=SURFACE, lw=1.5, zorder=zorder)
+    _hatch(ax, p0, p1, u, 0.35 * size, n=8, zorder=zorder)
+
+
+def draw_ropes(ax, geom: Geometry, q, alpha: float = 1.0, zorder: float = 1.5) -> int:
+    """Draw every rope, string, belt and cable of the system at ``q``: straight segments between tangent points,
+    the arcs it lies on round each pulley, and a hatched anchor where an end is fixed to the ground.  Returns
+    how many ropes and cables were drawn."""
+    drawn = 0
+    size = 0.06 * geom.scale(q)
+    for c in geom.system.constraints.values():
+        if c.kind == "rope" and getattr(c, "stations", ()):
+            segs = _rope_segments(geom, c, q)
+            for qi, qj in segs:
+                ax.plot(*np.array([qi, qj]).T, color=ROPE, lw=1.6, alpha=alpha, zorder=zorder, solid_capstyle="round")
+            for k, st in enumerate(c.stations[1:-1], start=1):       # the arc on pulley k, from in to out
+                if k - 1 >= len(segs) or k >= len(segs):
+                    continue
+                centre, r = _xy(geom.point(st.point, q)), abs(geom.number(st.signed_radius))
+                t_in, t_out = (np.degrees(np.arctan2(*(p - centre)[::-1])) for p in (segs[k - 1][1], segs[k][0]))
+                start, end = (t_in, t_out) if st.sign > 0 else (t_out, t_in)
+                ax.add_patch(patches.Arc(centre, 2 * r, 2 * r, theta1=start, theta2=end, color=ROPE, lw=1.6,
+                                         alpha=alpha, zorder=zorder + 0.6))
+            for st, seg, tip in ((c.stations[0], segs[:1], 0), (c.stations[-1], segs[-1:], 1)):
+                if st.body is None and seg and not st.signed_radius:
+                    end, other = seg[0][tip], seg[0][1 - tip]
+                    _anchor(ax, end, end - other, size, zorder)
+            drawn += 1
+        elif c.kind == "cable" and getattr(c, "points", ()):
+            pts = np.array([_xy(geom.point(p, q)) for p in c.points])
+            ax.plot(pts[:, 0], pts[:, 1], color=ROPE, lw=1.6, alpha=alpha, zorder=zorder)
+            for tip, nxt, body in ((0, 1, c.bodies[0]), (-1, -2, c.bodies[-1])):
+                if body is None and len(pts) > 1:
+                    _anchor(ax, pts[tip], pts[tip] - pts[nxt], size, zorder)
+            drawn += 1
+    return drawn

@@ -37,7 +37,7 @@ section { background: white; border: 1px solid #e2e2e2; border-radius: 6px; padd
           margin: 1.2em 0; }
 h2 { color: #1f3b5c; border-bottom: 2px solid #c9d6e8; padding-bottom: .2em; }
 h3 { font-size: 1.05em; margin: 1.1em 0 .3em 0; }
-.law { font-family: "DejaVu Sans", sans-serif; font-size: .7em; color: #777; font-weight: normal;
+.law { font-family: "DejaVu Sans", sans-serif; font-size: .7em; color: #5c5c5c; font-weight: normal;
        margin-left: .6em; }
 .step { border-left: 3px solid #c9d6e8; padding-left: .9em; margin: .6em 0 1em 0; }
 .why { color: #444; font-style: italic; margin: .3em 0; }
@@ -82,6 +82,11 @@ def math_font_css() -> str:
     return f'@font-face {{ font-family: "RigidkinMath"; src: url(data:font/woff2;base64,{b64}) format("woff2"); }}'
 
 
+def animation_alt(b: Animation) -> str:
+    """The text alternative of an animation's frames (what a screen reader says): its caption."""
+    return f"Animation, one frame at a time: {b.caption}".strip()
+
+
 def _esc(s: str) -> str:
     return html_text(s)
 
@@ -111,7 +116,7 @@ def block_html(b, math=None, heading: str = "h3", anchors: bool = True) -> str:
         why = f'<p class="why">{_esc(b.why)}</p>' if b.why else ""
         return f'<div class="step"><{heading}>{_esc(b.title)}{law}</{heading}>{eqs}{why}</div>'
     if isinstance(b, Table):
-        head = "".join(f"<th>{_esc(c)}</th>" for c in b.columns)
+        head = "".join(f'<th scope="col">{_esc(c)}</th>' for c in b.columns)
         rows = "".join("<tr>" + "".join(f"<td>{cell(c)}</td>" for c in r) + "</tr>" for r in b.rows)
         cap = f"<caption>{_esc(b.caption)}</caption>" if b.caption else ""
         return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>"
@@ -122,7 +127,8 @@ def block_html(b, math=None, heading: str = "h3", anchors: bool = True) -> str:
                 f"<figcaption>{_esc(b.caption)}</figcaption></figure>")
     if isinstance(b, Animation):
         aid = f' id="animation-{_esc(b.key)}" class="animation-figure"' if anchors else ""
-        return f"<figure{aid}>{offline_player(b.html)}<figcaption>{_esc(b.caption)}</figcaption></figure>"
+        player = offline_player(b.html).replace("<img id=", f'<img alt="{_esc(animation_alt(b))}" id=', 1)
+        return f"<figure{aid}>{player}<figcaption>{_esc(b.caption)}</figcaption></figure>"
     raise TypeError(f"unknown block {b!r}")
 
 

@@ -20,9 +20,11 @@ import sympy as sp
 from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 from sympy.physics.vector.printing import VectorLatexPrinter
 from sympy.printing.mathml import MathMLPresentationPrinter
+from sympy.printing.precedence import PRECEDENCE
 
 from ..base.printing import GREEK
 from ..base.textsafe import tex_text
+from .products import masses_first
 
 t = dynamicsymbols._t
 
@@ -251,6 +253,19 @@ class MathMLPrinter(MathMLPresentationPrinter):
             self._term(comp, outer, k == 0, kids)
         return self._el("mrow", *kids)
 
+    def _print_Mul(self, expr):
+        """m g, m l² (report.products): the masses first, factors joined by invisible times."""
+        ordered = masses_first(expr)
+        if ordered is None:
+            return super()._print_Mul(expr)
+        coeff, factors = ordered
+        kids = [self._el("mo", text="\u2212")] if coeff < 0 else []
+        if abs(coeff) != 1:
+            kids += [self._print(abs(coeff)), self._el("mo", text="\u2062")]
+        for k, f in enumerate(factors):
+            kids += ([self._el("mo", text="\u2062")] if k else []) + [self.parenthesize(f, PRECEDENCE["Mul"])]
+        return self._el("mrow", *kids)
+
     def _print_Relational(self, e):
         op = {"==": "=", ">=": "≥", "<=": "≤"}.get(e.rel_op, e.rel_op)
         return self._el("mrow", self._print(e.lhs), self._el("mo", text=op), self._print(e.rhs))
@@ -397,6 +412,20 @@ class LatexPrinter(VectorLatexPrinter):
                     c = rf"\left({c}\right)"
                 out.append(f"{sign}{c}\\,{basis}")
         return " ".join(out) if out else "0"
+
+    def _print_Mul(self, expr):
+        """m g, m l² (report.products): the masses first."""
+        numer, denom = sp.fraction(expr)
+        if denom != 1 and masses_first(-numer if numer.could_extract_minus_sign() else numer) is not None:
+            if expr.could_extract_minus_sign():
+                return "- " + self._print(-expr)
+            return rf"\frac{{{self._print(numer)}}}{{{self._print(denom)}}}"
+        ordered = masses_first(expr)
+        if ordered is None:
+            return super()._print_Mul(expr)
+        coeff, factors = ordered
+        head = ("- " if coeff < 0 else "") + (f"{self._print(abs(coeff))} " if abs(coeff) != 1 else "")
+        return head + " ".join(self.parenthesize(f, PRECEDENCE["Mul"]) for f in factors)
 
     def _print_Vector(self, v):
         return self._terms([(c, self.basis(f, i)) for c, f, i in _vector_terms(v)])
