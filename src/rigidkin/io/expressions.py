@@ -158,13 +158,9 @@ class _Parser:
         if isinstance(v, float):
             if not math.isfinite(v):
                 raise self.fail(f"the number {v} is not finite", node)
-            return _exact_decimal(self.literal(node, v))
+            written = ast.get_source_segment(self.source, node) or ""      # the decimal as written: read exactly
+            return exact_decimal(written if written.replace(".", "").isdigit() else repr(v), MAX_DIGITS)
         raise self.fail(f"the constant {v!r} is not allowed", node)
-
-    def literal(self, node: ast.Constant, v: float) -> str:
-        """The decimal as written (``0.1``, ``2.5e-3``), from the source; Python's shortest repr otherwise."""
-        written = ast.get_source_segment(self.source, node) if self.source else None
-        return written if written and set(written) <= _DECIMAL_CHARS else repr(v)
 
     def _Name(self, node: ast.Name):
         name = node.id
@@ -404,15 +400,7 @@ def _number(value, where):
     if abs(value) > MAX_MAGNITUDE:
         raise InputError(f"the number {value:g} is too large (above {MAX_MAGNITUDE:.0e}).", where=where,
                          hint="Give the value in SI units of a sensible size.")
-    return _exact_decimal(repr(value))
-
-
-_DECIMAL_CHARS = frozenset("0123456789.eE+-_")
-
-
-def _exact_decimal(written: str) -> sp.Number:
-    """A decimal of an expression read exactly (``"0.1"`` → 1/10), see :func:`rigidkin.model.values.exact_decimal`."""
-    return exact_decimal(written, MAX_DIGITS)
+    return exact_decimal(repr(value), MAX_DIGITS)           # read exactly: 0.1 is 1/10
 
 
 def parse(text: str | int | float, scope: Scope, where: str | None = None, want: str = "scalar"):
