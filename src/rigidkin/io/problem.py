@@ -24,6 +24,7 @@ from ..model.system import System
 from . import schema as S
 from .build_loads import ConstraintsAndLoads
 from .build_questions import Questions, _slip_handler
+from .build_units import UnitsAndDimensions
 from .expressions import (
     Scope,
     check_name,
@@ -47,7 +48,7 @@ _NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
 _FRICTION_WORDS = ("smooth", "rolling", "no-slip", "no_slip")
 
 
-class _Builder(ConstraintsAndLoads, Questions):
+class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
     def __init__(self, spec: S.ProblemFile, locator: Locator, name: str):
         self.spec, self.loc = spec, locator
         self.s = System(name, statement=spec.statement, title=spec.title)
@@ -187,6 +188,7 @@ class _Builder(ConstraintsAndLoads, Questions):
         for name, ld in sp_.loads.items():
             self.load(name, ld)
         self.generated_names()
+        self.check_dimensions()
         return self.s
 
     def generated_names(self) -> None:
@@ -202,6 +204,7 @@ class _Builder(ConstraintsAndLoads, Questions):
     def parameter(self, name, p: S.ParameterSpec):
         path = ("parameters", name)
         self.declared(name, "parameter", path)
+        self.unit_warning(name, p, path)
         value = p.value
         if p.unit is not None:
             unit_dimension(p.unit, self.where(*path, "unit"))
