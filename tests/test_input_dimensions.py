@@ -46,6 +46,9 @@ gravity = {{ type = "gravity", g = "g" }}
 """
 
 
+SPRING = 'spring = { type = "spring", point_a = "G", point_b = "O", body_a = "rod", stiffness = "k" }'
+
+
 def _text(extra="", loads="", offset="-l/2*R.y"):
     return BASE.format(extra=extra, loads=loads, offset=offset)
 
@@ -63,7 +66,7 @@ def _build(**kw):
     ('F = { unit = "N/m", value = 3 }', 'push = { type = "force", point = "G", vector = "m*g*Ex + F*Ey" }',
      "loads.push.vector", "F", "M·T^-2"),
     # a spring's stiffness in N (kg·m/s²) where N/m (kg/s²) is expected
-    ('k = { unit = "N", value = 10 }', 'spring = { type = "spring", point_a = "G", point_b = "O", body_a = "rod", stiffness = "k" }',
+    ('k = { unit = "N", value = 10 }', SPRING,
      "loads.spring.stiffness", "the term k", "M·L·T^-2 (kg*m/s^2)"),
     # a torque in N (a force)
     ('T0 = { unit = "N", value = 1 }', 'drive = { type = "torque", body = "rod", vector = "T0*Ez" }',
@@ -86,7 +89,7 @@ def test_right_units_pass_with_numbers_in_si():
     """Consistent loads pass; a bare number stands for a value in SI (0.1 m added to l/2)."""
     system, _ = _build(extra='F = { unit = "N", value = 3 }\nk = { unit = "N/cm", value = 2 }',
                        loads='push = { type = "force", point = "G", vector = "F*Ex - m*g*Ey" }\n'
-                             'spring = { type = "spring", point_a = "G", point_b = "O", body_a = "rod", stiffness = "k" }',
+                             + SPRING,
                        offset="-(l/2 + 0.1)*R.y")
     assert input_dimension_errors(system) == []
 
@@ -138,3 +141,16 @@ def test_python_api_can_check_its_model():
     with pytest.raises(ModelError, match="the term k"):
         check_input_dimensions(s)
     assert sp.Symbol("k", positive=True) == k
+
+
+def test_the_warning_is_said_again_from_the_derivation_cache(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv("RIGIDKIN_CACHE", str(tmp_path / "cache"))
+    monkeypatch.delenv("RIGIDKIN_NO_CACHE", raising=False)
+    warnings.simplefilter("always")     # each command is a process of its own: every warning is shown
+    path = tmp_path / "pushed.toml"
+    path.write_text(_text("c = { value = 2 }", 'push = { type = "force", point = "G", vector = "c*m*g*Ex" }'))
+    for _ in range(2):               # the second solve reads the derivation cache: the file is not read again
+        assert main(["solve", str(path)]) == 0
+        assert "parameter 'c' has no unit" in capsys.readouterr().err
+    assert main(["simulate", str(path), "--t-end", "0.05"]) == 0
+    assert "parameter 'c' has no unit" in capsys.readouterr().err

@@ -27,9 +27,11 @@ class UnitsAndDimensions:
         if p.unit is not None or p.dimension is not None:
             return
         self.unknown_dimensions = getattr(self, "unknown_dimensions", set()) | {name}
-        warnings.warn(f"{self.where(*path)}: the parameter '{name}' has no unit, so its dimension is not known and "
-                      "the dimensions of the expressions it enters are not checked. Give it a unit (unit = \"N/m\"), "
-                      "or unit = \"1\" for a pure number.", UserWarning, stacklevel=2)
+        message = (f"{self.where(*path)}: the parameter '{name}' has no unit, so its dimension is not known and the "
+                   "dimensions of the expressions it enters are not checked. Give it a unit (unit = \"N/m\"), or "
+                   "unit = \"1\" for a pure number.")
+        self.reading_warnings = (*getattr(self, "reading_warnings", ()), message)
+        warnings.warn(message, UserWarning, stacklevel=2)
 
     def check_dimensions(self) -> None:
         """Refuse the first field of the model whose quantity has the wrong dimension, at its place in the file."""

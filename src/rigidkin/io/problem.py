@@ -450,7 +450,7 @@ def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") ->
     questions = builder.questions(spec.ask)
     ps = ProblemSpec(path, name, spec.title, spec.statement, spec.ask.eom,
                      None if spec.ask.reactions is None else tuple(spec.ask.reactions), questions,
-                     builder._question_scope(), locator, spec)
+                     builder._question_scope(), locator, spec, tuple(getattr(builder, "reading_warnings", ())))
     return system, ps
 
 
