@@ -154,3 +154,15 @@ def test_the_warning_is_said_again_from_the_derivation_cache(tmp_path, monkeypat
         assert "parameter 'c' has no unit" in capsys.readouterr().err
     assert main(["simulate", str(path), "--t-end", "0.05"]) == 0
     assert "parameter 'c' has no unit" in capsys.readouterr().err
+
+
+def test_a_question_whose_terms_cannot_be_added_is_an_error(tmp_path, capsys):
+    """The ladder card asking when N_A = m·l (a force against kg·m) is refused, naming both terms."""
+    src = Path(examples.__file__).parent / "ladder.toml"
+    text = src.read_text()
+    assert 'when = "N_A = 0"' in text
+    with pytest.raises(InputError) as err:
+        build_problem(tomllib.loads(text.replace('when = "N_A = 0"', 'when = "N_A = m*l"')), text, "ladder.toml")
+    msg = str(err.value)
+    assert "leaves_wall" in msg and "l·m has dimension M·L" in msg and "N_A has M·L·T^-2" in msg, msg
+    build_problem(tomllib.loads(text.replace('when = "N_A = 0"', 'when = "N_A = m*g/2"')), text, "ladder.toml")

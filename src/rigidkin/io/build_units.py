@@ -6,6 +6,7 @@ through the builder, so each gets these checks before anything is derived:
 * a parameter declared with neither ``unit`` nor ``dimension`` is a warning (its dimension is not known,
   so the expressions it enters cannot be checked); ``unit = "1"`` (or ``""``, or ``dimension =
   "dimensionless"``) declares a pure number;
+* every equation and condition of a question (``when = "N_A = 0"``) must have terms of one dimension;
 * every field of a load, point, body, constraint and frame must have its dimension (a force's vector is
   a force, a spring's stiffness a force per length, an offset a length ...): a force written in N/m is an
   error naming the load, the field and the term (:mod:`rigidkin.model.dimension_checks`).
@@ -15,6 +16,9 @@ from __future__ import annotations
 
 import warnings
 
+import sympy as sp
+
+from ..base.dimensions import DimensionMismatch, UnknownDimension, dimension_of, symbol_dimensions
 from ..base.errors import InputError
 from ..model.dimension_checks import input_dimension_errors
 
@@ -40,3 +44,24 @@ class UnitsAndDimensions:
             table = getattr(self.spec, err.table, {}) or {}
             where = self.where(err.table, err.name, err.field) if err.name in table else None
             raise err.error(where, InputError)
+
+    def check_question_dimensions(self, questions) -> None:
+        """Refuse an equation or condition of a question whose terms cannot be added (``"theta = l"``)."""
+        dims = symbol_dimensions(self.s)
+        for name in getattr(self, "unknown_dimensions", ()):
+            dims.pop(self.s.parameters[name], None)
+        for q in questions:
+            for key, value in q.fields.items():
+                for rel in value if isinstance(value, list | tuple) else (value,):
+                    if not isinstance(rel, sp.core.relational.Relational):
+                        continue
+                    terms = [a for a in sp.Add.make_args(rel.lhs - rel.rhs) if a.free_symbols]  # numbers: SI
+                    try:
+                        dimension_of(sp.Add(*terms, evaluate=False) if len(terms) > 1 else sp.Add(*terms), dims)
+                    except UnknownDimension:
+                        continue
+                    except DimensionMismatch as exc:
+                        raise InputError(f"'{key}' of question {q.name} is not dimensionally consistent: "
+                                         f"{exc.message}", where=q.where or None,
+                                         hint="Check the units of the parameters in these terms, or the "
+                                              "expression.") from None

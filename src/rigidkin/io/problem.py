@@ -448,6 +448,7 @@ def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") ->
     builder = _Builder(spec, locator, name)
     system = builder.build()
     questions = builder.questions(spec.ask)
+    builder.check_question_dimensions(questions)
     ps = ProblemSpec(path, name, spec.title, spec.statement, spec.ask.eom,
                      None if spec.ask.reactions is None else tuple(spec.ask.reactions), questions,
                      builder._question_scope(), locator, spec, tuple(getattr(builder, "reading_warnings", ())))
