@@ -246,7 +246,7 @@ def _value_cases():
          ["bodies.disk", "radius", "positive"]),
         ("negative-mu", sub('friction = "mu"', 'friction = "-mu"', BLOCK), 2,
          ["constraints.floor", "friction coefficient", "zero or positive"]),
-        ("negative-mu-value", sub("mu = { unit = \"1\", value = 0.3 }", "mu = { unit = \"1\", value = -0.3, positive = false }", BLOCK), 2,
+        ("negative-mu-value", sub("value = 0.3 }", "value = -0.3, positive = false }", BLOCK), 2,
          ["constraints.floor", "friction coefficient", "-0.3"]),
         ("negative-stiffness", sub('stiffness = "k"', 'stiffness = "-k"', BLOCK), 2,
          ["loads.spring", "stiffness", "zero or positive"]),
