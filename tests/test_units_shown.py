@@ -120,3 +120,20 @@ def test_solve_text_and_json(tmp_path, capsys):
     assert p["value"] == pytest.approx(2.0) and p["si_unit"] == "m"    # value stays SI, with its SI unit
     d = data["definitions"]["a"]
     assert d["value"] == pytest.approx(0.5) and d["value_in_unit"] == pytest.approx(50) and d["si_unit"] == "m"
+
+
+def test_a_coordinate_number_is_in_its_unit():
+    """unit = "cm", initial = 5 is 5 cm (0.05 m) and rate = 10 is 10 cm/s, as a parameter's value is in its unit;
+    a quantity keeps its own unit, and with no unit a number is in SI."""
+    import tomllib
+
+    text = PENDULUM.replace('[coordinates]\n', '[coordinates]\n'
+                            'x = { sense = "along Ex", kind = "length", unit = "cm", initial = 5, rate = 10 }\n'
+                            'y = { sense = "along Ey", kind = "length", unit = "cm", initial = "3 mm" }\n'
+                            'z = { sense = "along Ez", kind = "length", initial = 0.5 }\n'
+                            'phi = { sense = "about Ez", unit = "deg", initial = 90 }\n')
+    system, _ = build_problem(tomllib.loads(text), text, "cm.toml")
+    info = system.coordinate_info
+    assert info["x"].initial == pytest.approx(0.05) and info["x"].rate == pytest.approx(0.1)
+    assert info["y"].initial == pytest.approx(0.003) and info["z"].initial == pytest.approx(0.5)
+    assert info["phi"].initial == pytest.approx(math.pi / 2)

@@ -232,12 +232,17 @@ class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
         path = ("coordinates", name)
         self.declared(name, "coordinate", path)
         dim = unit_dimension(c.unit, self.where(*path, "unit")) if c.unit else LENGTH if c.kind == "length" else ONE
-        for key, d in (("initial", dim), ("rate", dim / TIME)):
+        values = {}
+        unit = c.unit if c.unit is not None and c.unit.strip() not in ("", "1", "-") else None
+        for key, d, u in (("initial", dim, unit), ("rate", dim / TIME, unit and f"({unit})/s")):
             v = getattr(c, key)
             if v is not None:
                 to_si(v, None, self.where(*path, key), d)   # finite, of the coordinate's dimension
-        q = self.call(path, self.s.coordinate, name, c.sense, c.kind, c.unit, c.initial, c.rate, c.description,
-                      c.positive)
+            plain = isinstance(v, int | float) or isinstance(v, str) and _NUMBER.fullmatch(v)
+            # a plain number is in the coordinate's unit (unit = "cm", initial = 5 is 5 cm), as a parameter's value
+            values[key] = to_si(v, u, self.where(*path, key)) if u and plain else v
+        q = self.call(path, self.s.coordinate, name, c.sense, c.kind, c.unit, values["initial"], values["rate"],
+                      c.description, c.positive)
         self.scope.names[name] = q
         self.scope.coordinates[name] = q
 
