@@ -166,3 +166,20 @@ def test_a_question_whose_terms_cannot_be_added_is_an_error(tmp_path, capsys):
     msg = str(err.value)
     assert "leaves_wall" in msg and "l·m has dimension M·L" in msg and "N_A has M·L·T^-2" in msg, msg
     build_problem(tomllib.loads(text.replace('when = "N_A = 0"', 'when = "N_A = m*g/2"')), text, "ladder.toml")
+
+
+@pytest.mark.parametrize("old, new, field", [
+    ('surface = { type = "circle", centre = "O", radius = "R"', 'surface = { type = "circle", centre = "O", radius = "m"',
+     "constraints"),                                                  # the track's radius in kg
+    ('radius = "r"\n', 'radius = "r*m"\n', "constraints"),             # the contact radius in kg·m
+    ('disk = { shape = "disk", mass = "m", radius = "r"', 'disk = { shape = "disk", mass = "m*r", radius = "r"',
+     "bodies.disk.mass"),
+])
+def test_the_disk_in_track_card_with_a_wrong_unit(old, new, field):
+    src = Path(examples.__file__).parent / "disk-in-track.toml"
+    text = src.read_text()
+    assert old in text
+    bad = text.replace(old, new, 1)
+    with pytest.raises(InputError) as err:
+        build_problem(tomllib.loads(bad), bad, "disk-in-track.toml")
+    assert field in str(err.value) and "has dimension" in str(err.value)

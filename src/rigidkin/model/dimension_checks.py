@@ -125,6 +125,17 @@ def input_dimension_errors(system, unknown=()) -> list[DimensionError]:
             value = getattr(c, field, None)
             if isinstance(value, sp.Basic):
                 check("constraints", name, field, value, what, want, f"the {field} of constraint {name}")
+        surface_radius = getattr(getattr(c, "surface", None), "radius", None)
+        if isinstance(surface_radius, sp.Basic):
+            check("constraints", name, "surface", surface_radius, "a length", LENGTH,
+                  f"the radius of the surface of constraint {name}")
+        for station in getattr(c, "stations", ()) or ():
+            value = getattr(station, "signed_radius", None)
+            if isinstance(value, sp.Basic):
+                check("constraints", name, "path", value, "a length", LENGTH, f"a pulley radius of rope {name}")
+            if isinstance(getattr(station, "mu", None), sp.Basic):
+                check("constraints", name, "path", station.mu, "a friction coefficient (a number)", ONE,
+                      f"a friction coefficient of rope {name}")
         friction = getattr(c, "friction", None)
         for field in ("mu", "mu_s"):
             value = getattr(friction, field, None)
