@@ -169,7 +169,7 @@ def test_a_question_whose_terms_cannot_be_added_is_an_error(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("old, new, field", [
-    ('centre = "O", radius = "R"', 'centre = "O", radius = "m"', "constraints"),                                                  # the track's radius in kg
+    ('centre = "O", radius = "R"', 'centre = "O", radius = "m"', "constraints"),  # the track's radius in kg
     ('radius = "r"\n', 'radius = "r*m"\n', "constraints"),             # the contact radius in kg·m
     ('disk = { shape = "disk", mass = "m", radius = "r"', 'disk = { shape = "disk", mass = "m*r", radius = "r"',
      "bodies.disk.mass"),
