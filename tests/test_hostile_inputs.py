@@ -58,7 +58,7 @@ title = "Block on a rough floor"
 m = { unit = "kg", value = 2 }
 g = { unit = "m/s^2", value = 9.81 }
 r = { unit = "m", value = 0.1 }
-mu = { value = 0.3 }
+mu = { unit = "1", value = 0.3 }
 k = { unit = "N/m", value = 10 }
 [coordinates]
 x = { sense = "along Ex from O", kind = "length", initial = 0, rate = 1 }
@@ -224,10 +224,10 @@ def _expression_cases():
         ("expr-log-negative", sub('stiffness = "k"', 'stiffness = "log(1 - 2*k)"', BLOCK), 2,
          ["loads.spring.stiffness", "complex"]),
         ("expr-log-zero", load("log(0)*Ex"), 2, ["loads.push.vector", "infinite or undefined"]),
-        ("expr-dot-in-load-ok", load("-m*dot(theta)*R.x"), 0, []),
+        ("expr-dot-in-load-ok", load("-m*l*dot(theta)**2*R.x"), 0, []),      # a force (issue 26: dimensions)
         ("expr-ddot-in-question-ok", PENDULUM + '[[ask.question]]\nkind = "value"\nexpression = "ddot(theta)"\n'
                                                 'at = { theta = 0.5 }\n', 0, []),
-        ("expr-big-constant-ok", load("6.67*10**-11*m*Ex"), 0, []),
+        ("expr-big-constant-ok", load("6.67*10**-11*m*g*Ex"), 0, []),
     ]
 
 
@@ -246,7 +246,7 @@ def _value_cases():
          ["bodies.disk", "radius", "positive"]),
         ("negative-mu", sub('friction = "mu"', 'friction = "-mu"', BLOCK), 2,
          ["constraints.floor", "friction coefficient", "zero or positive"]),
-        ("negative-mu-value", sub("mu = { value = 0.3 }", "mu = { value = -0.3, positive = false }", BLOCK), 2,
+        ("negative-mu-value", sub("value = 0.3 }", "value = -0.3, positive = false }", BLOCK), 2,
          ["constraints.floor", "friction coefficient", "-0.3"]),
         ("negative-stiffness", sub('stiffness = "k"', 'stiffness = "-k"', BLOCK), 2,
          ["loads.spring", "stiffness", "zero or positive"]),

@@ -55,7 +55,7 @@ def scope() -> Scope:
     ("1.5*m", sp.Float(1.5) * m),
     ("(((((m)))))", m),
     ("m**(1/2)", sp.sqrt(m)),
-    ("m**0.5", m**sp.Float(0.5)),
+    ("m**0.5", sp.sqrt(m)),                    # a decimal is read exactly (issue 26)
 ])
 def test_scalars(scope, text, expected):
     got = parse_scalar(text, scope)
@@ -63,7 +63,7 @@ def test_scalars(scope, text, expected):
 
 
 def test_numbers_pass_through(scope):
-    assert parse_scalar(3, scope) == 3 and parse_scalar(0.25, scope) == sp.Float(0.25)
+    assert parse_scalar(3, scope) == 3 and parse_scalar(0.25, scope) == sp.Rational(1, 4)   # read exactly
     assert parse_vector(0, scope) == Vector(0)
 
 

@@ -208,7 +208,7 @@ x = { sense = "along Ex", kind = "length" }
 [points]
 C = { offset = "x*Ex" }
 [bodies]
-b = { shape = "particle", mass = "k*L0", frame = "F", at = "C" }
+b = { shape = "particle", mass = "2", frame = "F", at = "C" }
 ''')
     s, _ = load_problem(f)
     for name, expect in (("L0", 0.5), ("beta", 3.141592653589793 / 6), ("k", 300.0)):

@@ -38,6 +38,11 @@ class DimensionMismatch(RigidkinError):
         super().__init__(message, where=where)
 
 
+class UnknownDimension(DimensionMismatch):
+    """A symbol whose dimension is not known (not a parameter, coordinate or reaction, or a parameter
+    declared without a unit): nothing can be said about the terms it enters."""
+
+
 def symbol_dimensions(system, setup=None) -> dict:
     """Symbol (or coordinate function) → Dimension for the parameters, coordinates, reactions and signs."""
     dims: dict = {t: TIME}
@@ -92,13 +97,13 @@ def dimension_of(expr, dims: dict) -> Dimension:
     if isinstance(e, sp.Symbol):
         d = _lookup(dims, e)
         if d is None:
-            raise DimensionMismatch(f"the dimension of '{text(e)}' is not known (it is not a parameter, coordinate "
+            raise UnknownDimension(f"the dimension of '{text(e)}' is not known (it is not a parameter, coordinate "
                                     "or reaction).", term=e)
         return d
     if isinstance(e, sp.Function) and isinstance(e.func, sp.core.function.UndefinedFunction):
         d = _lookup(dims, e)
         if d is None:
-            raise DimensionMismatch(f"the dimension of '{text(e)}' is not known.", term=e)
+            raise UnknownDimension(f"the dimension of '{text(e)}' is not known.", term=e)
         return d
     if e.is_Add:
         terms = [(a, dimension_of(a, dims)) for a in e.args]

@@ -373,3 +373,65 @@ def to_si(value: float | str, unit: str | None = None, where: str | None = None,
     """Convert ``value`` (a number in ``unit``, or a string such as ``"30 deg"``) to SI base units
     (see :func:`parse_quantity`)."""
     return parse_quantity(value, unit, where, dimension)
+
+
+# showing values ----------------------------------------------------------------------------------
+_SI_NAMES = (("mass", "kg"), ("length", "m"), ("time", "s"), ("current", "A"), ("temperature", "K"),
+             ("substance", "mol"), ("luminosity", "cd"))
+
+
+def _declared(unit: str | None) -> str | None:
+    """``unit`` when it names a unit; None for a plain number (``None``, ``""``, ``"1"``, ``"-"``)."""
+    return None if unit is None or str(unit).strip() in ("", "1", "-") else str(unit).strip()
+
+
+def si_unit(dimension: Dimension) -> str:
+    """The SI unit of a dimension, written as a unit string rigidkin reads back: ``kg*m/s^2``, ``1/s``; ``""``
+    for a dimensionless quantity."""
+    up, down = [], []
+    for base, name in _SI_NAMES:
+        v = getattr(dimension, base)
+        if v == 0:
+            continue
+        power = f"^{_fmt(abs(v))}" if abs(v) != 1 else ""
+        (up if v > 0 else down).append(name + power)
+    if not up and not down:
+        return ""
+    top = "*".join(up) or "1"
+    if not down:
+        return top
+    return f"{top}/{down[0]}" if len(down) == 1 else f"{top}/({'*'.join(down)})"
+
+
+def from_si(value: float | None, unit: str | None) -> float | None:
+    """The magnitude in ``unit`` of a value held in SI base units: the inverse of :func:`parse_quantity`
+    (``from_si(2.0, "cm")`` is 200, ``from_si(pi/6, "deg")`` is 30).  A plain number's unit (None, ``""``,
+    ``"1"``) leaves the value as it is."""
+    if value is None or _declared(unit) is None:
+        return value
+    units = _units_of(_declared(unit))
+    reg = registry()
+    base = reg.Quantity(1.0, units).to_base_units().units
+    return float(reg.Quantity(value, base).to(units).magnitude)
+
+
+@lru_cache(maxsize=256)
+def _units_of(unit: str):
+    return registry().parse_expression(_screen(unit, None)).units
+
+
+def shown_unit(unit: str | None, dimension: Dimension) -> str:
+    """The unit a value is shown in: the one it was declared in, else the SI unit of its dimension."""
+    return _declared(unit) or si_unit(dimension)
+
+
+def shown_value(value: float | None, unit: str | None, dimension: Dimension, digits: int = 6) -> str:
+    """A value held in SI, as text in the unit it was declared in (``"200 cm"``) or, with no unit, in SI
+    with the SI unit (``"2 m"``); ``"—"`` for no value."""
+    if value is None:
+        return "—"
+    shown = _declared(unit)
+    number = from_si(value, shown) if shown else value
+    text = f"{number:.{digits}g}"
+    u = shown or si_unit(dimension)
+    return f"{text} {u}" if u else text

@@ -29,6 +29,7 @@ import hashlib
 import hmac
 import os
 import sys
+import warnings
 from pathlib import Path
 
 from .. import __version__, examples
@@ -318,6 +319,8 @@ class CachedProblem:
         if entry is not None:
             self.system, self.spec, self.answers = entry["system"], entry.get("spec"), entry.get("answers")
             self.hit, self._seen, self._answers_seen = True, kept_keys(self.system), self.answers
+            for message in getattr(self.spec, "reading_warnings", ()):   # said again: the file was read before
+                warnings.warn(message, UserWarning, stacklevel=2)
         else:
             self.system, self.spec = load()
 

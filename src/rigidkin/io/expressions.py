@@ -37,6 +37,7 @@ from sympy.physics.vector import Vector, dynamicsymbols
 
 from ..base.errors import InputError
 from ..model.checks import check_identifier, numeric_value
+from ..model.values import exact_decimal
 from .language import (  # noqa: F401  (public here too: the language's limits, functions and reserved names)
     CONSTRUCTS,
     FUNCTIONS,
@@ -70,6 +71,7 @@ class _Parser:
     def __init__(self, text: str, scope: Scope, where: str | None, offset: int = 0):
         self.text, self.scope, self.where, self.offset = text, scope, where, offset
         self.calls = 0              # functions being called around the node being built
+        self.source = ""            # the text the tree was parsed from (for decimals as written)
 
     def fail(self, message: str, node: ast.AST | None = None, hint: str | None = HINT) -> InputError:
         col = getattr(node, "col_offset", None)
@@ -91,6 +93,7 @@ class _Parser:
         self.offset += len(source) - len(source.lstrip())
         try:
             tree = ast.parse(stripped, mode="eval")
+            self.source = stripped
         except SyntaxError as exc:
             col = f" at column {exc.offset + self.offset}" if exc.offset else ""
             raise InputError(f"the expression {_snippet(self.text)} is not valid syntax{col} ({exc.msg}).",
@@ -155,7 +158,8 @@ class _Parser:
         if isinstance(v, float):
             if not math.isfinite(v):
                 raise self.fail(f"the number {v} is not finite", node)
-            return sp.Float(v)
+            written = ast.get_source_segment(self.source, node) or ""      # the decimal as written: read exactly
+            return exact_decimal(written if written.replace(".", "").isdigit() else repr(v), MAX_DIGITS)
         raise self.fail(f"the constant {v!r} is not allowed", node)
 
     def _Name(self, node: ast.Name):
@@ -396,7 +400,7 @@ def _number(value, where):
     if abs(value) > MAX_MAGNITUDE:
         raise InputError(f"the number {value:g} is too large (above {MAX_MAGNITUDE:.0e}).", where=where,
                          hint="Give the value in SI units of a sensible size.")
-    return sp.Float(value)
+    return exact_decimal(repr(value), MAX_DIGITS)           # read exactly: 0.1 is 1/10
 
 
 def parse(text: str | int | float, scope: Scope, where: str | None = None, want: str = "scalar"):

@@ -24,6 +24,7 @@ from ..model.system import System
 from . import schema as S
 from .build_loads import ConstraintsAndLoads
 from .build_questions import Questions, _slip_handler
+from .build_units import UnitsAndDimensions
 from .expressions import (
     Scope,
     check_name,
@@ -47,7 +48,7 @@ _NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
 _FRICTION_WORDS = ("smooth", "rolling", "no-slip", "no_slip")
 
 
-class _Builder(ConstraintsAndLoads, Questions):
+class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
     def __init__(self, spec: S.ProblemFile, locator: Locator, name: str):
         self.spec, self.loc = spec, locator
         self.s = System(name, statement=spec.statement, title=spec.title)
@@ -189,6 +190,7 @@ class _Builder(ConstraintsAndLoads, Questions):
         for name, ld in sp_.loads.items():
             self.load(name, ld)
         self.generated_names()
+        self.check_dimensions()
         return self.s
 
     def generated_names(self) -> None:
@@ -204,6 +206,7 @@ class _Builder(ConstraintsAndLoads, Questions):
     def parameter(self, name, p: S.ParameterSpec):
         path = ("parameters", name)
         self.declared(name, "parameter", path)
+        self.unit_warning(name, p, path)
         value = p.value
         if p.unit is not None:
             unit_dimension(p.unit, self.where(*path, "unit"))
@@ -238,12 +241,17 @@ class _Builder(ConstraintsAndLoads, Questions):
         path = ("coordinates", name)
         self.declared(name, "coordinate", path)
         dim = unit_dimension(c.unit, self.where(*path, "unit")) if c.unit else LENGTH if c.kind == "length" else ONE
-        for key, d in (("initial", dim), ("rate", dim / TIME)):
+        values = {}
+        unit = c.unit if c.unit is not None and c.unit.strip() not in ("", "1", "-") else None
+        for key, d, u in (("initial", dim, unit), ("rate", dim / TIME, unit and f"({unit})/s")):
             v = getattr(c, key)
             if v is not None:
                 to_si(v, None, self.where(*path, key), d)   # finite, of the coordinate's dimension
-        q = self.call(path, self.s.coordinate, name, c.sense, c.kind, c.unit, c.initial, c.rate, c.description,
-                      c.positive)
+            plain = isinstance(v, int | float) or isinstance(v, str) and _NUMBER.fullmatch(v)
+            # a plain number is in the coordinate's unit (unit = "cm", initial = 5 is 5 cm), as a parameter's value
+            values[key] = to_si(v, u, self.where(*path, key)) if u and plain else v
+        q = self.call(path, self.s.coordinate, name, c.sense, c.kind, c.unit, values["initial"], values["rate"],
+                      c.description, c.positive)
         self.scope.names[name] = q
         self.scope.coordinates[name] = q
 
@@ -454,9 +462,10 @@ def build_problem(data: dict, text: str = "", path: Path | str = "<problem>") ->
     builder = _Builder(spec, locator, name)
     system = builder.build()
     questions = builder.questions(spec.ask)
+    builder.check_question_dimensions(questions)
     ps = ProblemSpec(path, name, spec.title, spec.statement, spec.ask.eom,
                      None if spec.ask.reactions is None else tuple(spec.ask.reactions), questions,
-                     builder._question_scope(), locator, spec)
+                     builder._question_scope(), locator, spec, tuple(getattr(builder, "reading_warnings", ())))
     return system, ps
 
 

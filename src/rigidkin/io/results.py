@@ -17,6 +17,7 @@ from typing import Any
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
+from ..base.units import from_si, si_unit
 from ..derive.solution import READABLE_DOF, LazyMap
 
 t = dynamicsymbols._t
@@ -144,11 +145,12 @@ def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] 
                      "independent": c.symbol in sol.coordinates}
             for c in s.coordinate_info.values()},
         "parameters": {
-            p.name: {"symbol": _s(p.symbol), "unit": p.unit, "description": p.description, "value": p.value}
+            p.name: {"symbol": _s(p.symbol), "unit": p.unit, "description": p.description, "value": p.value,
+                     "si_unit": si_unit(p.dimension), "value_in_unit": p.value_in_unit}
             for p in s.parameter_info.values()},
         "definitions": {
             n: {"symbol": n, "expression": _s(d.expression), "unit": d.unit, "description": d.description,
-                "value": d.value}
+                "value": d.value, "si_unit": si_unit(d.dimension), "value_in_unit": from_si(d.value, d.unit)}
             for n, d in getattr(s, "definitions", {}).items()},
         "relations": {q.func.__name__: _s(e) for q, e in sol.relations.items()},
         "eom": first["eom"],

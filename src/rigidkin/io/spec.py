@@ -32,6 +32,9 @@ class ProblemSpec:
     scope: Scope = field(default_factory=default_scope, repr=False)
     locator: Locator | None = field(default=None, repr=False)
     data: S.ProblemFile | None = field(default=None, repr=False)
+    #: The warnings said while the file was read (a parameter with no unit ...): said again when the problem is
+    #: read back from the derivation cache.
+    reading_warnings: tuple[str, ...] = ()
 
     def where(self, *path) -> str:
         """``"file.toml, line 12, bodies.rod.at"`` for a field path."""

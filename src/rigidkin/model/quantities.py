@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..base.units import ONE, Dimension
+from ..base.units import ONE, Dimension, from_si, shown_unit, shown_value
 
 t = dynamicsymbols._t
 
@@ -28,9 +28,25 @@ class Parameter:
     dimension: Dimension = ONE
     value: float | None = None
 
+    @property
+    def value_in_unit(self) -> float | None:
+        """The value in the unit it was declared in (``value`` is in SI): 200 for ``unit="cm", value=200``."""
+        return from_si(self.value, self.unit)
+
+    @property
+    def shown_unit(self) -> str:
+        """The unit the value is shown in: the declared one, else the SI unit of the dimension ("" for a number)."""
+        return shown_unit(self.unit, self.dimension)
+
+    @property
+    def shown_value(self) -> str:
+        """The value as text in its declared unit (``"200 cm"``), or in SI with the SI unit; ``"—"`` for none."""
+        return shown_value(self.value, self.unit, self.dimension)
+
     def __repr__(self) -> str:
-        v = "" if self.value is None else f" = {self.value:g}"
-        return f"Parameter({self.name}{v} [{self.unit or self.dimension}]: {self.description})"
+        v = "" if self.value is None else f" = {self.shown_value}"
+        u = "" if self.value is not None else f" [{self.shown_unit or self.dimension}]"
+        return f"Parameter({self.name}{v}{u}: {self.description})"
 
 
 @dataclass(frozen=True, eq=False)

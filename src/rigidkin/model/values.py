@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+from fractions import Fraction
+
 import sympy as sp
 
 from ..base.errors import ModelError
@@ -15,7 +18,25 @@ def _expr(value, where: str = "") -> sp.Expr:
         raise ModelError(f"expected a number or a sympy expression, got {kind}.", where=where or None,
                          hint="In Python, build expressions from the symbols System.parameter and "
                               "System.coordinate return (l/2, m*g); text expressions belong in problem files.")
+    if isinstance(value, float):
+        return exact_decimal(value)
     return sp.sympify(value)
+
+
+def exact_decimal(value: float | str, digits: int = 40) -> sp.Expr:
+    """A decimal as the exact rational it denotes: ``"0.1"`` (as written) or the float 0.1 (as it prints) → 1/10.
+
+    Decimals in problem files and bare floats given to the Python API are read so, and exact input gives
+    exact output (``0.1*g + 0.9*g`` is g; 0.5 is 1/2, not a float that turns every derived expression into
+    floats).  A sympy expression built in Python is taken as it is (``0.5*l`` keeps its float; write
+    ``l/2``).  A number whose exact form has more than ``digits`` digits (``1e-60``) stays a float."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return sp.sympify(value)
+    written = repr(value) if isinstance(value, float) else value.replace("_", "")
+    frac = Fraction(written)
+    if max(len(str(abs(frac.numerator))), len(str(frac.denominator))) > digits:
+        return sp.Float(written)
+    return sp.Rational(frac.numerator, frac.denominator)
 
 
 def _friction(friction, where):

@@ -16,6 +16,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..base.printing import text as plain_text
 from ..base.trace import SECTIONS
+from ..base.units import ONE, from_si, shown_unit, si_unit
 from ..model.speeds import euler_norms
 from .blocks import Document, Equations, Figure, Math, Paragraph, Section, Step, Table
 
@@ -40,18 +41,19 @@ def _value(v, unit: str = "") -> str:
 
 
 def _unit_of(info) -> str:
-    unit = getattr(info, "unit", "") or ""
-    if unit:
-        return unit
-    kind = getattr(info, "kind", "")
-    return {"angle": "rad", "length": "m"}.get(kind, "")
+    """The unit a coordinate's values are shown in (they are held in SI): rad for an angle, else the SI unit of
+    its dimension."""
+    dim = getattr(info, "dimension", ONE)
+    if getattr(info, "kind", "") == "angle" and dim.is_dimensionless:
+        return "rad"
+    return si_unit(dim)
 
 
 def inputs_tables(system, solution=None) -> list[Table]:
     """The parameters (symbol, meaning, unit, value) and coordinates (symbol, sense, kind, unit, initial state)."""
     prows = []
     for p in system.parameter_info.values():
-        prows.append((Math(p.symbol), p.description or "", p.unit or "—", _value(p.value)))
+        prows.append((Math(p.symbol), p.description or "", p.shown_unit or "—", _value(p.value_in_unit)))
     independent = set(solution.coordinates) if solution is not None else set(system.coordinates)
     crows = []
     for c in system.coordinate_info.values():
@@ -64,7 +66,8 @@ def inputs_tables(system, solution=None) -> list[Table]:
     definitions = getattr(system, "definitions", {})
     if definitions:              # derived quantities (System.define): each with its definition
         drows = tuple((Math(sp.Eq(d.quantity.symbol, d.expression, evaluate=False)), d.description or "",
-                       d.unit or "—", _value(d.value)) for d in definitions.values())
+                       shown_unit(d.unit, d.dimension) or "—", _value(from_si(d.value, d.unit)))
+                      for d in definitions.values())
         tables.append(Table(("Definition", "Meaning", "Unit", "Value"), drows, "Derived quantities"))
     return tables + [Table(("Coordinate", "Sense", "Kind", "Unit", "Role", "Initial value", "Initial rate"),
                            tuple(crows), "Generalised coordinates")]

@@ -105,7 +105,7 @@ def system_latex(system) -> str:
     rows = [rf"{latex(c.symbol)} & \text{{{_mathjax_text(c.sense or c.description or c.kind)}}}"
             for c in system.coordinate_info.values()]
     rows += [rf"{latex(p.symbol)} & \text{{{_mathjax_text(p.description or '')}"
-             + (f" ({p.value:g} {_mathjax_text(p.unit)})" if p.value is not None else "") + "}"
+             + (f" ({_mathjax_text(p.shown_value)})" if p.value is not None else "") + "}"
              for p in system.parameter_info.values()]
     head = rf"\text{{{_mathjax_text(system.title)}}} & "
     return _no_markup("$\\displaystyle \\begin{array}{ll}" + " \\\\ ".join([head, *rows]) + "\\end{array}$")

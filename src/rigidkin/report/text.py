@@ -10,6 +10,7 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..base.printing import text
 from ..base.textsafe import terminal_safe
+from ..base.units import shown_value
 from ..derive.derivation import derivation_of
 from ..model.speeds import euler_norms
 
@@ -89,7 +90,7 @@ def _coordinates(sol) -> list[str]:
     if definitions:
         out += ["", "Definitions"]
         for d in definitions.values():
-            value = f" = {d.value:.6g}" + (f" {d.unit}" if d.unit else "") if d.value is not None else ""
+            value = f" = {shown_value(d.value, d.unit, d.dimension)}" if d.value is not None else ""
             about = f"  ({d.description})" if d.description else ""
             out.append(f"{_INDENT}{text(d.quantity)} = {text(d.expression)}{value}{about}")
     return out

@@ -19,6 +19,7 @@ import html
 from collections.abc import Mapping
 
 from ..base.errors import RigidkinError
+from ..base.units import si_unit
 
 
 class MissingExtra(RigidkinError, ImportError):
@@ -84,7 +85,7 @@ class Explorer:
         for name in names:
             p = info[name]
             lo, hi = ranges.get(name, _range(float(p.value)))
-            unit = f" ({p.unit})" if p.unit else ""
+            unit = f" ({si_unit(p.dimension)})" if si_unit(p.dimension) else ""     # the sliders are in SI
             self.sliders[name] = ipw.FloatSlider(
                 value=float(p.value), min=float(lo), max=float(hi), step=(float(hi) - float(lo)) / 200,
                 description=name, readout_format=".4g", continuous_update=False,
