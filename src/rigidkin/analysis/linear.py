@@ -192,7 +192,7 @@ def dependent_coordinates(solution, extra: Sequence, known: Mapping, values: Map
     values); real at the parameters' values.  Refused when the constraints do not fix them (a velocity
     constraint: a non-holonomic coordinate is a state of its own)."""
     gaps = [(lab, g.xreplace({q.diff(t): 0 for q in known}).xreplace(dict(known))) for lab, g in _gaps(solution)]
-    plain = {q: sp.Dummy(_name(q)) for q in extra}
+    plain = {q: sp.Dummy(_name(q), real=True) for q in extra}
     eqs = [(lab, g.xreplace(plain)) for lab, g in gaps]
     eqs = [(lab, g) for lab, g in eqs if g.has(*plain.values())]
     unknowns = list(plain.values())
