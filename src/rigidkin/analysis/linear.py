@@ -29,6 +29,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base import algebra
 from ..base.errors import InputError, RigidkinError
 from ..base.printing import text
+from ..derive.kinematics import linear_form
 from ..model.speeds import require_rate_speeds
 
 t = dynamicsymbols._t
@@ -361,9 +362,7 @@ def linearise_about(solution, at: Mapping, rest: bool = False, inputs: Sequence 
         point.update(sols[0])
     _check_constraints(solution, point, vals, what)
     # dependent rates at the point, and ∂q_d/∂q_i from the rate relations
-    rates = {u: point[u] for u in us}
     D = sp.zeros(len(extra), len(qs))
-    from ..derive.kinematics import linear_form
     for i, q in enumerate(extra):
         rel = sp.sympify(solution.rate_relations[q.diff(t)])
         A_, _ = linear_form([rel], us)

@@ -43,8 +43,8 @@ def power_balance_warnings(solution) -> list[str]:
 
 def _warnings(solution) -> list[str]:
     from .compare import Sampler, holds_numerically
-    from .manifold import manifold_of
     from .energy import kinetic_energy, nonconservative_power, potential_energy
+    from .manifold import manifold_of
 
     setup = solution.setup
     kept, setup.trace = setup.trace, Trace(law="power balance")   # the steps go to a throwaway trace
