@@ -230,3 +230,29 @@ def test_event_back_substitution_refuses_a_state_that_misses_the_condition():
                                                                                    q.diff(t): 0})
     with pytest.raises(rk.RigidkinError, match="back-substitution"):
         _verified(sol, bad)
+
+
+def test_relative_equilibrium_of_a_collar_on_a_spinning_rod():
+    """A collar on a smooth rod turned at the constant rate Ω (its frame's angle Ω t): x = 0 is a relative
+    equilibrium, ẍ = Ω² x by hand, so the linearisation has λ = ±Ω (unstable); x = 1 is not one."""
+    s = rk.System("spinning rod")
+    m, Om = s.parameter("m", "kg", value=1), s.parameter("Omega", "rad/s", value=2)
+    x = s.coordinate("x", "distance of the collar from the axis, along the rod", kind="length")
+    R = s.frame("R", angle=Om * t)
+    C = s.point("C", offset=x * R.x)
+    b = s.body("collar", rk.shapes.PointMass(m), frame=s.inertial, at=C)
+    s.contact("rod", b, s.line(s.origin, R.y, name="rod"), centre=C, unilateral=False, normal_name="N")
+    sol = s.solve()
+    lin = steady.linearise(sol, {x: 0, x.diff(t): 0})
+    assert all(algebra.is_zero(e) for e in (lin.A - sp.Matrix([[0, 1], [Om**2, 0]])))
+    assert lin.stability() == "unstable"
+    with pytest.raises(rk.RigidkinError, match=r"back-substitution.*x''"):
+        steady.linearise(sol, {x: 1, x.diff(t): 0})
+
+
+def test_phases_refuse_a_driven_phase_with_the_reason():
+    from rigidkin.analysis.phases import Phase, run_phases
+
+    s, q, _ = _pendulum(driven=True)
+    with pytest.raises(rk.RigidkinError, match="t explicitly"):
+        run_phases(s, [Phase("swing", until=sp.Eq(q, 1))], {q: 0})
