@@ -256,3 +256,23 @@ def test_phases_refuse_a_driven_phase_with_the_reason():
     s, q, _ = _pendulum(driven=True)
     with pytest.raises(rk.RigidkinError, match="t explicitly"):
         run_phases(s, [Phase("swing", until=sp.Eq(q, 1))], {q: 0})
+
+
+def test_non_minimal_pendulum_integral_and_event_in_closed_form():
+    """The x–y pendulum released at rest from x = 1/2 (below the pivot): energy by hand,
+    ½ m ẋ² l²/(l² − x²) = m g (sqrt(l² − x²) − sqrt(l² − 1/4)); at x = 0, ẋ² = g (2 l − sqrt(4 l² − 1));
+    it turns back at x = −1/2."""
+    from rigidkin.analysis.events import event, extreme
+    from rigidkin.analysis.integrals import energy_integral
+
+    s, (x, y), (m, l, g) = _xy_pendulum()
+    sol = s.solve()
+    start = {x: sp.Rational(1, 2), y: -sp.sqrt(15) / 2, x.diff(t): 0}
+    integral = energy_integral(sol, start)
+    by_hand = 2 * g * (l**2 - x**2) / l**2 * (sp.sqrt(l**2 - x**2) - sp.sqrt(l**2 - sp.Rational(1, 4)))
+    assert algebra.is_zero(integral.rate_squared - by_hand)
+    assert algebra.is_zero(integral.branch[y] + sp.sqrt(l**2 - x**2))           # the branch below the pivot
+    ev = event(sol, sp.Eq(x, 0), start)
+    assert ev.happens and ev.exact and algebra.is_zero(ev.configuration[y] + l)
+    assert algebra.is_zero(ev.rate**2 - g * (2 * l - sp.sqrt(4 * l**2 - 1)))
+    assert algebra.is_zero(extreme(sol, x, start).value + sp.Rational(1, 2))

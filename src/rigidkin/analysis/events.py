@@ -118,7 +118,8 @@ def _direction(solution, integral, values) -> tuple[int, str]:
     u0n = _num(u0, values)
     if abs(u0n) > 1e-12:
         return (1 if u0n > 0 else -1), ""
-    acc = single_regime(solution).accelerations[q].xreplace({q.diff(t): 0, q: q0})
+    acc = single_regime(solution).accelerations[q].xreplace({q.diff(t): 0}).xreplace(integral.branch)
+    acc = acc.xreplace({q: q0})
     a0 = _num(acc, values)
     if abs(a0) > 1e-12:
         return (1 if a0 > 0 else -1), ""
@@ -413,7 +414,7 @@ def _event_1dof(solution, integral, when, name) -> Event:
     rate = sp.sqrt(integral.rate_squared.xreplace({q: value}))
     rate = algebra.readable(direction * rate)
     config = {q: value}
-    for qd, rel in solution.relations.items():
+    for qd, rel in {**solution.relations, **integral.branch}.items():
         config[qd] = algebra.readable(rel.xreplace({q: value}))
     state = {**config, q.diff(t): rate}
     for ud, rel in solution.rate_relations.items():
