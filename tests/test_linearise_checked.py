@@ -276,3 +276,23 @@ def test_non_minimal_pendulum_integral_and_event_in_closed_form():
     assert ev.happens and ev.exact and algebra.is_zero(ev.configuration[y] + l)
     assert algebra.is_zero(ev.rate**2 - g * (2 * l - sp.sqrt(4 * l**2 - 1)))
     assert algebra.is_zero(extreme(sol, x, start).value + sp.Rational(1, 2))
+
+
+def test_critical_spin_found_numerically_when_sympy_has_no_closed_form(monkeypatch):
+    """The numeric route (sign changes of the lowest coefficient of det(λI − A), refined by bisection)
+    finds the same critical spin as the closed form Ω² = g/(3a)."""
+    from rigidkin.analysis import linear
+
+    sol = rolling_disk.build().solve()
+    psi, theta, phi = sol.coordinates
+    Om = sp.Symbol("Omega", positive=True)
+    sm = steady.linearise(sol, {theta: 0, theta.diff(t): 0, psi.diff(t): 0, phi.diff(t): Om})
+
+    def no_closed_form(*args, **kwargs):
+        raise NotImplementedError
+
+    monkeypatch.setattr(linear.sp, "solve", no_closed_form)
+    (crit,) = sm.critical_values(Om)
+    vals = sol.system.parameter_values()
+    P = sol.system.parameters
+    assert abs(float(crit) - float(sp.sqrt(P["g"] / (3 * P["a"])).xreplace(vals))) < 1e-9
