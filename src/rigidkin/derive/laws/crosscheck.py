@@ -137,8 +137,8 @@ class CheckReport:
         lines = [f"Cross-check of {self.system}: every law against {self.reference}", self.table()]
         bad = [v for v in self.verdicts if v.status == "disagrees"]
         for v in bad:
-            lines.append(f"{v.law} disagrees on {v.equation}:\n  {v.law}: {text(v.ours)}\n"
-                         f"  {self.reference}: {text(v.reference)}")
+            lines.append(f"{v.law} disagrees on {v.equation}:\n  {v.law}: {_short(v.ours)}\n"
+                         f"  {self.reference}: {_short(v.reference)}")
         if self.dimensions:
             wrong = [d for d in self.dimensions if not d.consistent]
             lines.append(f"Dimensions: {len(self.dimensions) - len(wrong)} of {len(self.dimensions)} equations "
@@ -155,6 +155,14 @@ class CheckReport:
 
 
 # comparison ---------------------------------------------------------------------------------------
+def _short(expr, limit: int = 400) -> str:
+    """An expression for the report: in full when short, else its start and its size."""
+    shown = text(expr)
+    if len(shown) <= limit:
+        return shown
+    return f"{shown[:limit]}… ({len(shown)} characters in all)"
+
+
 def candidate_laws(solution) -> list[str]:
     """Every other law for this mode: the 2nd law about each constraint point, energy, Lagrange, Kane."""
     system = solution.system
