@@ -20,7 +20,7 @@ from ..base import algebra
 from ..base.errors import RigidkinError
 from ..base.printing import text
 from .events import SOLVE_SECONDS, _num, numeric_values
-from .linear import _gaps, _is_real, explicit_time, linearise_about, present, single_regime
+from .linear import _is_real, explicit_time, linearise_about, position_gaps, present, single_regime
 
 t = dynamicsymbols._t
 
@@ -78,7 +78,7 @@ def equilibria(solution, limit: int = 8) -> list[Equilibrium]:
     if not eqs:
         raise RigidkinError("every configuration is an equilibrium (no generalised force acts).")
     if extra:
-        eqs += [algebra.readable(g.xreplace(rest)).xreplace(plain) for _, g in _gaps(solution)]
+        eqs += [algebra.readable(g.xreplace(rest)).xreplace(plain) for _, g in position_gaps(solution)]
     try:
         with algebra.time_limit(SOLVE_SECONDS):
             sols = sp.solve(eqs, [plain[q] for q in unknowns], dict=True)

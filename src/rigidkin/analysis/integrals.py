@@ -21,6 +21,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base import algebra
 from ..base.errors import RigidkinError
 from ..derive.laws.energy import kinetic_energy, potential_energy
+from .linear import position_gaps, present
 from .states import at_state, full_state
 
 t = dynamicsymbols._t
@@ -118,14 +119,12 @@ def explicit_branch(solution, regime, start: dict | None) -> dict:
     """The dependent coordinates that M and f still contain, as functions of the independent one: the
     position constraints solved in closed form, the branch the start lies on (a pendulum in x and y:
     y = −sqrt(l² − x²) when it starts below the pivot).  Empty when there are none."""
-    from .linear import _gaps, present
-
     extra = [d for d in solution.dependent if d in present([regime.mass_matrix[0, 0], regime.forcing[0]])]
     if not extra:
         return {}
     (q,) = solution.coordinates
     plain = {d: sp.Dummy(d.func.__name__, real=True) for d in extra}
-    eqs = [g.xreplace(plain) for _, g in _gaps(solution) if g.has(*extra)]
+    eqs = [g.xreplace(plain) for _, g in position_gaps(solution) if g.has(*extra)]
     try:
         with algebra.time_limit(SIMPLIFY_SECONDS):
             sols = sp.solve(eqs, list(plain.values()), dict=True)

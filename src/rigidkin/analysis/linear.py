@@ -178,7 +178,7 @@ def explicit_time(expr) -> bool:
     return algebra.plain_state(sp.sympify(expr))[0].has(t)
 
 
-def _gaps(solution) -> list:
+def position_gaps(solution) -> list:
     """(label, gap) of the position constraints that relate the coordinates."""
     return [(r.label, sp.sympify(r.gap)) for r in solution.setup.reduction.relating if r.gap is not None]
 
@@ -192,7 +192,8 @@ def dependent_coordinates(solution, extra: Sequence, known: Mapping, values: Map
     configuration ``known`` (closed form where sympy finds one, else Newton's method from their initial
     values); real at the parameters' values.  Refused when the constraints do not fix them (a velocity
     constraint: a non-holonomic coordinate is a state of its own)."""
-    gaps = [(lab, g.xreplace({q.diff(t): 0 for q in known}).xreplace(dict(known))) for lab, g in _gaps(solution)]
+    rest = {q.diff(t): 0 for q in known}
+    gaps = [(lab, g.xreplace(rest).xreplace(dict(known))) for lab, g in position_gaps(solution)]
     plain = {q: sp.Dummy(_name(q), real=True) for q in extra}
     eqs = [(lab, g.xreplace(plain)) for lab, g in gaps]
     eqs = [(lab, g) for lab, g in eqs if g.has(*plain.values())]
@@ -429,7 +430,7 @@ def _at(expr, point):
 def _check_constraints(solution, point, vals, what) -> None:
     """The position constraints hold at the point (those whose coordinates it gives)."""
     res = {}
-    for lab, g in _gaps(solution):
+    for lab, g in position_gaps(solution):
         e = _at(g, point)
         if algebra.functions_of_time(e):
             continue
