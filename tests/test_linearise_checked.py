@@ -276,6 +276,13 @@ def test_non_minimal_pendulum_integral_and_event_in_closed_form():
     assert ev.happens and ev.exact and algebra.is_zero(ev.configuration[y] + l)
     assert algebra.is_zero(ev.rate**2 - g * (2 * l - sp.sqrt(4 * l**2 - 1)))
     assert algebra.is_zero(extreme(sol, x, start).value + sp.Rational(1, 2))
+    # the rod's pull along the motion: T = m g (3 cos θ − 2 cos θ0), cos θ = sqrt(l² − x²)/l (by hand)
+    from rigidkin.analysis.answers import answer
+    from rigidkin.analysis.questions import Question
+
+    N = answer(s, Question("reaction", "N", {"reaction": "N_rod", "start": start})).value
+    cos = sp.sqrt(l**2 - x**2) / l
+    assert algebra.is_zero(N - m * g * (3 * cos - 2 * cos.xreplace({x: sp.Rational(1, 2)})))
 
 
 def test_critical_spin_found_numerically_when_sympy_has_no_closed_form(monkeypatch):
