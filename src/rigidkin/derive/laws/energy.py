@@ -232,8 +232,8 @@ def first_integral(system, mode: dict | None = None, substitutions: dict | None 
                             where=system.name, hint="The work–energy law dE/dt = ΣP_nc still holds.")
     E = kinetic_energy(setup) + potential_energy(setup)
     if algebra.plain_state(E)[0].has(t):
-        raise NotApplicable("energy depends explicitly on time (a frame, point or load driven by a law in t), so it is not "
-                            "conserved.",
+        raise NotApplicable("energy depends explicitly on time (a frame, point or load driven by a law in t), "
+                            "so it is not conserved.",
                             where=system.name)
     setup.trace.add("Answers", "Energy integral", [(sp.Symbol("E"), E)],
                     "every non-conservative power is zero, so dE/dt = 0: E = T + U is constant.")
