@@ -19,9 +19,8 @@ from sympy.physics.vector import dynamicsymbols
 from ..base import algebra
 from ..base.errors import RigidkinError
 from ..base.printing import text
-from ..model.speeds import require_rate_speeds
 from .events import SOLVE_SECONDS, _num, numeric_values
-from .integrals import single_regime
+from .linear import _is_real, explicit_time, linearise_about, position_gaps, present, single_regime
 
 t = dynamicsymbols._t
 
@@ -51,34 +50,52 @@ class Equilibrium:
         return out
 
 
-def _generalised(solution):
-    require_rate_speeds(solution.system, "an equilibrium's linearisation")
-    regime = single_regime(solution)
-    return regime, regime.mass_matrix, regime.forcing
-
-
 def equilibria(solution, limit: int = 8) -> list[Equilibrium]:
-    """Equilibrium configurations of a single-regime solution, each linearised."""
-    regime, M, f = _generalised(solution)
+    """Equilibrium configurations of a single-regime solution, each linearised (and so back-substituted).
+
+    Dependent coordinates that the equations still contain are unknowns too, with the position
+    constraints as equations.  Equations that depend on t explicitly (a driving law) have no
+    equilibrium for all t: refused with that reason.
+    """
+    regime, M, f = single_regime(solution, "an equilibrium")
     qs = list(solution.coordinates)
-    rates = {q.diff(t): 0 for q in qs}
-    plain = {q: sp.Symbol(q.func.__name__, real=True) for q in qs}
-    eqs = [algebra.readable(sp.sympify(e).xreplace(rates)).xreplace(plain) for e in f]
+    rest = {q.diff(t): 0 for q in qs}
+    for q in solution.dependent:
+        rest[q.diff(t)] = 0
+    f0 = f.xreplace(rest)
+    if any(explicit_time(e) for e in f0):
+        raise RigidkinError("the equations of motion depend on t explicitly (a driving law), so no "
+                            "configuration is at rest for all t: there is no equilibrium to give.",
+                            where="equilibrium", hint="Write the coordinates relative to the driven frame when "
+                                                      "the driving is a steady rotation (a relative "
+                                                      "equilibrium), or simulate.")
+    found = present(list(M) + list(f))
+    extra = [q for q in solution.dependent if q in found and not isinstance(q, sp.Derivative)]
+    unknowns = qs + extra
+    plain = {q: sp.Symbol(q.func.__name__, real=True) for q in unknowns}
+    eqs = [algebra.readable(sp.sympify(e)).xreplace(plain) for e in f0]
     eqs = [e for e in eqs if e != 0]
     if not eqs:
         raise RigidkinError("every configuration is an equilibrium (no generalised force acts).")
+    if extra:
+        eqs += [algebra.readable(g.xreplace(rest)).xreplace(plain) for _, g in position_gaps(solution)]
     try:
         with algebra.time_limit(SOLVE_SECONDS):
-            sols = sp.solve(eqs, [plain[q] for q in qs], dict=True)
+            sols = sp.solve(eqs, [plain[q] for q in unknowns], dict=True)
     except (NotImplementedError, TimeoutError):
         sols = []
     if not sols:
         raise RigidkinError("sympy finds no closed-form equilibrium configuration.",
                             hint="Search numerically with simulate(), or give the configuration to linearise().")
     back = {v: k for k, v in plain.items()}
+    values = numeric_values(solution)
     out = []
     for sol in sols[:limit]:
         conf = {back[k]: algebra.readable(v) for k, v in sol.items()}
+        if any(v.has(*plain.values()) for v in conf.values()):
+            continue                # a family of configurations with a free coordinate: none is isolated
+        if not all(_is_real(v, values) for v in conf.values()):
+            continue
         for q in qs:
             conf.setdefault(q, sp.Integer(0))
         if _off_arc(solution, regime, conf):
@@ -86,7 +103,8 @@ def equilibria(solution, limit: int = 8) -> list[Equilibrium]:
         out.append(linearise(solution, conf))
     if not out:
         raise RigidkinError("every equilibrium configuration found puts a contact point off its profile's arc "
-                            "(the curved face of a half shape does not touch there), so the model has none.")
+                            "(the curved face of a half shape does not touch there), or is not real, so the "
+                            "model has none.")
     return out
 
 
@@ -107,20 +125,29 @@ def _off_arc(solution, regime, conf) -> bool:
 
 
 def linearise(solution, at: dict) -> Equilibrium:
-    """Linearise the reaction-free EOM about the configuration ``at`` (rates zero)."""
-    regime, M, f = _generalised(solution)
+    """Linearise the reaction-free EOM about the configuration ``at`` (rates zero).
+
+    Refused, with the residual, when ``at`` is not an equilibrium (a generalised force does not vanish
+    there) or when the equations depend on t explicitly.  Dependent coordinates are eliminated.
+    """
+    lin = linearise_about(solution, at, rest=True, what="equilibrium")
+    regime = solution.regimes[0]
     qs = list(solution.coordinates)
     us = [q.diff(t) for q in qs]
-    point = {**{u: 0 for u in us}, **at}
-    Kmat = (-f.jacobian(qs)).xreplace(point).applyfunc(algebra.readable)
-    Cmat = (-f.jacobian(us)).xreplace(point).applyfunc(algebra.readable)
-    Mmat = M.xreplace(point).applyfunc(algebra.readable)
+    point = dict(lin.point)
     n = len(qs)
+    Mmat, Cmat = lin.M, lin.C
+    Kmat = sp.zeros(n, n)
+    kept = [q for q in qs if q not in lin.ignorable]
+    for j, q in enumerate(kept):
+        Kmat[:, qs.index(q)] = lin.K[:, j]
     acc = [q.diff(t, 2) for q in qs]
-    lin = []
+    eom = []
     for i in range(n):
         e = sum((Mmat[i, j] * acc[j] + Cmat[i, j] * us[j] + Kmat[i, j] * qs[j] for j in range(n)), sp.Integer(0))
-        lin.append(algebra.readable(e))
+        eom.append(algebra.readable(e))
+    configuration = {q: v for q, v in point.items() if not isinstance(q, sp.Derivative)
+                     and (q in at or q in lin.dependent or q not in lin.ignorable)}
     values = numeric_values(solution)
     # natural frequencies (undamped) where exact
     freqs, zetas, notes = [], [], []
@@ -168,5 +195,6 @@ def linearise(solution, at: dict) -> Equilibrium:
         v = _num(cond.expr.xreplace(point), values)
         if not cond.holds(v, 1e-9):
             notes.append(f"but {cond.label} fails there ({text(cond.expr)} = {v:.4g})")
-    return Equilibrium(dict(at), Mmat, Cmat, Kmat, tuple(lin), tuple(freqs), tuple(zetas),
+    notes = list(lin.notes) + notes
+    return Equilibrium(configuration, Mmat, Cmat, Kmat, tuple(eom), tuple(freqs), tuple(zetas),
                        tuple(complex(e) for e in eig), stab, tuple(notes))

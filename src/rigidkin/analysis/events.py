@@ -118,7 +118,8 @@ def _direction(solution, integral, values) -> tuple[int, str]:
     u0n = _num(u0, values)
     if abs(u0n) > 1e-12:
         return (1 if u0n > 0 else -1), ""
-    acc = single_regime(solution).accelerations[q].xreplace({q.diff(t): 0, q: q0})
+    acc = single_regime(solution).accelerations[q].xreplace({q.diff(t): 0}).xreplace(integral.branch)
+    acc = acc.xreplace({q: q0})
     a0 = _num(acc, values)
     if abs(a0) > 1e-12:
         return (1 if a0 > 0 else -1), ""
@@ -195,8 +196,29 @@ def event(solution, when, start: dict | None = None, name: str = "event", mode: 
     try:
         integral = energy_integral(solution, start)
     except RigidkinError as exc:
-        return event_by_simulation(solution, when, start, name, reason=exc.message, mode=mode)
-    return _event_1dof(solution, integral, when, name)
+        return _verified(solution, event_by_simulation(solution, when, start, name, reason=exc.message, mode=mode))
+    return _verified(solution, _event_1dof(solution, integral, when, name))
+
+
+def _verified(solution, ev: Event) -> Event:
+    """Back-substitution: the condition vanishes at the reported state (identically, or to the event's
+    tolerance at the parameters' values), else the event is refused with the residual."""
+    if not ev.happens or not ev.state:
+        return ev
+    r = algebra.readable(at_state(ev.condition, ev.state))
+    if ev.exact and algebra.is_zero(r):
+        return ev
+    values = numeric_values(solution)
+    v = _num(r, values)
+    scale = max(1.0, sum(abs(_num(a, values)) for a in sp.Add.make_args(sp.expand(ev.condition.xreplace(
+        {k: x for k, x in ev.state.items() if isinstance(k, sp.Derivative)}).xreplace(
+        {k: x for k, x in ev.state.items() if not isinstance(k, sp.Derivative)})))))
+    tol = 1e-9 if ev.exact else max(1e-6, 10 * (ev.tolerance or 0))
+    if not math.isnan(v) and abs(v) <= tol * scale:
+        return ev
+    raise RigidkinError(f"the event '{ev.name}' fails its back-substitution: its condition {text(ev.condition)} "
+                        f"is {text(r)} ≈ {v:.6g} at the reported state, not 0.",
+                        hint="This is a defect in rigidkin; please report the problem.")
 
 
 def event_by_simulation(solution, when, start: dict | None = None, name: str = "event",
@@ -392,7 +414,7 @@ def _event_1dof(solution, integral, when, name) -> Event:
     rate = sp.sqrt(integral.rate_squared.xreplace({q: value}))
     rate = algebra.readable(direction * rate)
     config = {q: value}
-    for qd, rel in solution.relations.items():
+    for qd, rel in {**solution.relations, **integral.branch}.items():
         config[qd] = algebra.readable(rel.xreplace({q: value}))
     state = {**config, q.diff(t): rate}
     for ud, rel in solution.rate_relations.items():

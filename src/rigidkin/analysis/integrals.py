@@ -13,7 +13,7 @@ that the integral exists (a non-conservative system gets a clear error, not a wr
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
@@ -21,6 +21,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base import algebra
 from ..base.errors import RigidkinError
 from ..derive.laws.energy import kinetic_energy, potential_energy
+from .linear import position_gaps, present
 from .states import at_state, full_state
 
 t = dynamicsymbols._t
@@ -53,6 +54,7 @@ class EnergyIntegral:
     mass: sp.Expr            # generalised mass M(q)
     force: sp.Expr           # generalised force Q(q)
     start: tuple             # (q0, q̇0)
+    branch: dict = field(default_factory=dict)   # dependent coordinates as functions of q along the motion
 
     @property
     def equation(self) -> tuple:
@@ -92,8 +94,9 @@ def energy_integral(solution, start: dict | None = None) -> EnergyIntegral:
     regime = single_regime(solution)
     (q,) = solution.coordinates
     u = q.diff(t)
-    M = bounded_simplify(regime.mass_matrix[0, 0])
-    f = regime.forcing[0]
+    branch = explicit_branch(solution, regime, start)
+    M = bounded_simplify(regime.mass_matrix[0, 0].xreplace(branch))
+    f = regime.forcing[0].xreplace(branch)
     Q = f.xreplace({u: 0})
     gyro = sp.expand(f - Q)
     s = sp.Dummy("s")
@@ -109,7 +112,46 @@ def energy_integral(solution, start: dict | None = None) -> EnergyIntegral:
     work = sp.integrate(Q.xreplace({q: s}), (s, q0, q))
     rate_sq = (M.xreplace({q: q0}) * u0**2 + 2 * work) / M
     rate_sq = algebra.readable(sp.simplify(rate_sq))
-    return EnergyIntegral(q, rate_sq, M, Q, (q0, u0))
+    return EnergyIntegral(q, rate_sq, M, Q, (q0, u0), branch)
+
+
+def explicit_branch(solution, regime, start: dict | None) -> dict:
+    """The dependent coordinates that M and f still contain, as functions of the independent one: the
+    position constraints solved in closed form, the branch the start lies on (a pendulum in x and y:
+    y = −sqrt(l² − x²) when it starts below the pivot).  Empty when there are none."""
+    extra = [d for d in solution.dependent if d in present([regime.mass_matrix[0, 0], regime.forcing[0]])]
+    if not extra:
+        return {}
+    (q,) = solution.coordinates
+    plain = {d: sp.Dummy(d.func.__name__, real=True) for d in extra}
+    eqs = [g.xreplace(plain) for _, g in position_gaps(solution) if g.has(*extra)]
+    try:
+        with algebra.time_limit(SIMPLIFY_SECONDS):
+            sols = sp.solve(eqs, list(plain.values()), dict=True)
+    except (NotImplementedError, TimeoutError):
+        sols = []
+    state = full_state(solution.system, dict(start or {}))
+    values = {p.symbol: p.value for p in solution.system.parameter_info.values() if p.value is not None}
+    back = {v: k for k, v in plain.items()}
+    for sol in sols:
+        if set(sol) != set(plain.values()):
+            continue
+        branch = {back[k]: v for k, v in sol.items()}
+        ok = True
+        for d, v in branch.items():
+            try:
+                have = complex(at_state(v, state).xreplace({k: sp.Float(x) for k, x in values.items()}).evalf())
+                want = complex(sp.sympify(state[d]).xreplace({k: sp.Float(x) for k, x in values.items()}).evalf())
+            except TypeError:
+                ok = False
+                break
+            ok &= abs(have - want) <= 1e-9 * max(1.0, abs(want))
+        if ok:
+            return branch
+    raise RigidkinError("the equations contain the dependent coordinates "
+                        f"{', '.join(d.func.__name__ for d in extra)}, and no closed-form solution of the position "
+                        "constraints passes through the start, so there is no closed-form energy integral.",
+                        hint="Check that the start satisfies the constraints, or simulate.")
 
 
 def along_motion(solution, expr, integral: EnergyIntegral) -> sp.Expr:
@@ -118,6 +160,8 @@ def along_motion(solution, expr, integral: EnergyIntegral) -> sp.Expr:
     u = q.diff(t)
     regime = single_regime(solution)
     e = sp.sympify(expr).xreplace({q.diff(t, 2): regime.accelerations[q]})
+    if integral.branch:
+        e = e.xreplace(dict(solution.rate_relations)).xreplace(integral.branch)
     e = sp.expand(e)
     plain, _ = algebra.plain_state(e)
     e = e.xreplace({u: sp.Symbol("_u")})

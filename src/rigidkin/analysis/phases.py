@@ -175,6 +175,10 @@ def run_phases(system, phases: list[Phase], start: dict | None = None) -> list[P
             results.append(PhaseResult(ph.name, True, desc, None, start_state, start_state, tuple(notes)))
             state = start_state
             continue
+        if any(algebra.plain_state(sp.sympify(a))[0].has(t) for a in accels.values()):
+            raise RigidkinError(f"phase '{ph.name}': the accelerations depend on t explicitly (a driving law), "
+                                "so the phase has no closed-form end state for its start alone.",
+                                hint="Use a simulation for this phase.")
         if not constant:
             raise RigidkinError(f"phase '{ph.name}': the accelerations are not constant, so there is no "
                                 "closed-form end state here.", hint="Use a simulation for this phase.")

@@ -27,8 +27,9 @@ SYMBOLIC_LIMIT = 250
 
 
 
-def _numeric_points(exprs, n: int, seed: int):
-    """Lambdified functions of the expressions and ``n`` random argument tuples."""
+def _numeric_points(exprs, n: int, seed: int, manifold=None):
+    """Lambdified functions of the expressions and ``n`` random argument tuples (on the constraint
+    manifold when a ``manifold`` of laws.manifold is given: a point that cannot be drawn there is nan)."""
     plains, backs = [], {}
     for e in exprs:
         p, back = algebra.plain_state(sp.sympify(e))
@@ -40,20 +41,27 @@ def _numeric_points(exprs, n: int, seed: int):
     pts = []
     for _ in range(n):
         vals = algebra.random_point(syms, rng)
-        pts.append([complex(vals[s]) for s in syms] + [rng.uniform(0.1, 1.0)])
+        tv = rng.uniform(0.1, 1.0)
+        if manifold is not None:
+            drawn = manifold.draw(rng, tv)
+            if drawn is None:
+                pts.append([complex("nan")] * len(syms) + [tv])
+                continue
+            vals.update({k: v for k, v in drawn.items() if k in vals})
+        pts.append([complex(vals[s]) for s in syms] + [tv])
     return funcs, pts
 
 
-def numerically_equal(a, b, n: int = SAMPLES, seed: int = 3, rtol: float = RTOL) -> bool:
+def numerically_equal(a, b, n: int = SAMPLES, seed: int = 3, rtol: float = RTOL, manifold=None) -> bool:
     """a = b at ``n`` random states and parameter sets, to relative tolerance ``rtol``.
 
     Points where either side is not finite are skipped; at least ``MIN_SAMPLES`` must be usable.
     """
-    return _numeric_compare(a, b, n, seed, rtol)[0]
+    return _numeric_compare(a, b, n, seed, rtol, manifold)[0]
 
 
-def _numeric_compare(a, b, n: int = SAMPLES, seed: int = 3, rtol: float = RTOL) -> tuple[bool, int]:
-    (fa, fb), pts = _numeric_points([a, b], n, seed)
+def _numeric_compare(a, b, n: int = SAMPLES, seed: int = 3, rtol: float = RTOL, manifold=None) -> tuple[bool, int]:
+    (fa, fb), pts = _numeric_points([a, b], n, seed, manifold)
     used = 0
     with np.errstate(all="ignore"):
         for p in pts:
@@ -69,8 +77,9 @@ def _numeric_compare(a, b, n: int = SAMPLES, seed: int = 3, rtol: float = RTOL) 
     return used >= MIN_SAMPLES, used
 
 
-def compare(a, b) -> tuple[bool, str]:
-    """(equal, how decided) for two expressions of the state and parameters."""
+def compare(a, b, manifold=None) -> tuple[bool, str]:
+    """(equal, how decided) for two expressions of the state and parameters (numerically at admissible
+    states of ``manifold`` when given: laws.manifold)."""
     d = sp.sympify(a) - sp.sympify(b)
     if d == 0:
         return True, "symbolic: identical"
@@ -80,7 +89,7 @@ def compare(a, b) -> tuple[bool, str]:
                 return True, "symbolic: the difference simplifies to 0"
         except (RecursionError, NotImplementedError, sp.PolynomialError):
             pass
-    ok, used = _numeric_compare(a, b)
+    ok, used = _numeric_compare(a, b, manifold=manifold)
     if used < 0:
         return False, f"numeric: they differ at a random state (state {-used} of those evaluated)"
     if used < MIN_SAMPLES:
@@ -108,13 +117,18 @@ class Sampler:
     mass-matrix form numerically, never from a symbolic inverse.
     """
 
-    def __init__(self, n: int = SAMPLES, seed: int = 5):
+    def __init__(self, n: int = SAMPLES, seed: int = 5, manifold=None):
         self.n, self.rng = n, random.Random(seed)
         self.values: list[dict] = [{} for _ in range(n)]
         self._funcs: dict = {}
+        self.manifold = manifold            # laws.manifold.Manifold: admissible states only
 
     def _value(self, i: int, s):
         d = self.values[i]
+        if self.manifold is not None and not d:
+            d[t] = self.rng.uniform(0.1, 1.0)
+            drawn = self.manifold.draw(self.rng, d[t])
+            d.update(drawn if drawn is not None else {u: complex("nan") for u in self.manifold.unknowns})
         if s not in d:
             d[s] = self.rng.uniform(0.1, 1.0) if s == t else complex(algebra.random_point([s], self.rng)[s])
         return d[s]

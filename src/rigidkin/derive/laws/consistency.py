@@ -44,6 +44,7 @@ def power_balance_warnings(solution) -> list[str]:
 def _warnings(solution) -> list[str]:
     from .compare import Sampler, holds_numerically
     from .energy import kinetic_energy, nonconservative_power, potential_energy
+    from .manifold import manifold_of
 
     setup = solution.setup
     kept, setup.trace = setup.trace, Trace(law="power balance")   # the steps go to a throwaway trace
@@ -62,7 +63,8 @@ def _warnings(solution) -> list[str]:
             used = [r for r in setup.reactions if e.has(r)]
             if used:
                 e = e.xreplace({r: regime.reactions[r.name] for r in used}).xreplace(dict(regime.signs))
-            ok, how = holds_numerically(e, regime, solution.coordinates, Sampler(STATES, seed=11))
+            ok, how = holds_numerically(e, regime, solution.coordinates,
+                                         Sampler(STATES, seed=11, manifold=manifold_of(solution)))
         except (RigidkinError, ArithmeticError, KeyError, TypeError, ValueError, RecursionError):
             continue
         if ok or "fails" not in how:

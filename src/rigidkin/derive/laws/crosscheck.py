@@ -46,6 +46,7 @@ from .compare import (  # noqa: F401  (public through here)
     same_equation,
 )
 from .energy import kinetic_energy, nonconservative_power, potential_energy
+from .manifold import manifold_of
 from .methods import NotApplicable
 
 t = dynamicsymbols._t
@@ -136,8 +137,8 @@ class CheckReport:
         lines = [f"Cross-check of {self.system}: every law against {self.reference}", self.table()]
         bad = [v for v in self.verdicts if v.status == "disagrees"]
         for v in bad:
-            lines.append(f"{v.law} disagrees on {v.equation}:\n  {v.law}: {text(v.ours)}\n"
-                         f"  {self.reference}: {text(v.reference)}")
+            lines.append(f"{v.law} disagrees on {v.equation}:\n  {v.law}: {_short(v.ours)}\n"
+                         f"  {self.reference}: {_short(v.reference)}")
         if self.dimensions:
             wrong = [d for d in self.dimensions if not d.consistent]
             lines.append(f"Dimensions: {len(self.dimensions) - len(wrong)} of {len(self.dimensions)} equations "
@@ -154,6 +155,14 @@ class CheckReport:
 
 
 # comparison ---------------------------------------------------------------------------------------
+def _short(expr, limit: int = 400) -> str:
+    """An expression for the report: in full when short, else its start and its size."""
+    shown = text(expr)
+    if len(shown) <= limit:
+        return shown
+    return f"{shown[:limit]}… ({len(shown)} characters in all)"
+
+
 def candidate_laws(solution) -> list[str]:
     """Every other law for this mode: the 2nd law about each constraint point, energy, Lagrange, Kane."""
     system = solution.system
@@ -260,7 +269,7 @@ def _compare_solutions(ref, other, law) -> list[Verdict]:
             if a is None:
                 out.append(Verdict(law, label, "error", "the law does not give this acceleration"))
                 continue
-            ok, how = compare(a, b)
+            ok, how = compare(a, b, manifold_of(ref))
             out.append(Verdict(law, label, _status(ok, how), how, a, b))
         if len(ref.coordinates) == 1 and o.eom and r.eom:
             ok, how = same_equation(o.eom[0], r.eom[0])
@@ -272,7 +281,7 @@ def _compare_solutions(ref, other, law) -> list[Verdict]:
 def _compare_numerically(ref, r, o, law, tag) -> list[Verdict]:
     """Accelerations of both laws from their own M q̈ = f, solved numerically at the same random states."""
     coords = ref.coordinates
-    sampler = Sampler()
+    sampler = Sampler(manifold=manifold_of(ref))
     bad, used = set(), 0
     for i in range(sampler.n):
         try:
@@ -324,11 +333,11 @@ def _power_balance(ref) -> list[Verdict]:
             react = {sp.Symbol(k, real=True): v for k, v in r.reactions.items()}
             e = e.xreplace(react).xreplace(dict(r.signs))
         if len(ref.coordinates) > 2:
-            ok, how = holds_numerically(e, r, ref.coordinates)
+            ok, how = holds_numerically(e, r, ref.coordinates, Sampler(manifold=manifold_of(ref)))
             resid = e
         else:
             resid = e.xreplace({q.diff(t, 2): a for q, a in r.accelerations.items()})
-            ok, how = compare(resid, 0)
+            ok, how = compare(resid, 0, manifold_of(ref))
         tag = f" [regime {i + 1}]" if many else ""
         out.append(Verdict("work-energy", f"dE/dt = ΣP_nc{tag}", "agrees" if ok else "disagrees",
                            "holds with the reference accelerations and reactions; " + how, resid, 0))
@@ -346,10 +355,10 @@ def _reaction_free_rows(ref, other, law) -> list[Verdict]:
         for i, r in enumerate(ref.regimes):
             e = eq.expr.xreplace(dict(r.signs))
             if len(ref.coordinates) > 2:
-                ok, how = holds_numerically(e, r, ref.coordinates)
+                ok, how = holds_numerically(e, r, ref.coordinates, Sampler(manifold=manifold_of(ref)))
             else:
                 resid = e.xreplace({q.diff(t, 2): a for q, a in r.accelerations.items()})
-                ok, how = compare(resid, 0)
+                ok, how = compare(resid, 0, manifold_of(ref))
             tag = f" [regime {i + 1}]" if many else ""
             along = eq.label.rsplit("along ", 1)[-1] if "along " in eq.label else ""
             name = f"{eq.body}: reaction-free 2nd law" + (f" along {along}" if along and not setup.kin.planar else "")
@@ -381,7 +390,7 @@ def expectation(solution, given, label: str | None = None) -> Expectation:
         if reacts:
             resid = resid.xreplace({sym: r.reactions[str(sym)] for sym in reacts}).xreplace(dict(r.signs))
         resid = resid.xreplace({q.diff(t, 2): a for q, a in r.accelerations.items()})
-        ok, how = compare(resid, 0)
+        ok, how = compare(resid, 0, manifold_of(solution))
         what = "accelerations and reactions" if reacts else "accelerations"
         if ok:
             return Expectation(e, shown, True, f"it holds for every state with the derived {what}; " + how,

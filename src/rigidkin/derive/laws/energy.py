@@ -232,7 +232,8 @@ def first_integral(system, mode: dict | None = None, substitutions: dict | None 
                             where=system.name, hint="The work–energy law dE/dt = ΣP_nc still holds.")
     E = kinetic_energy(setup) + potential_energy(setup)
     if algebra.plain_state(E)[0].has(t):
-        raise NotApplicable("energy depends explicitly on time (a moving support), so it is not conserved.",
+        raise NotApplicable("energy depends explicitly on time (a frame, point or load driven by a law in t), "
+                            "so it is not conserved.",
                             where=system.name)
     setup.trace.add("Answers", "Energy integral", [(sp.Symbol("E"), E)],
                     "every non-conservative power is zero, so dE/dt = 0: E = T + U is constant.")
@@ -269,31 +270,65 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     tr.add("Balance laws", "Work–energy law", [(sp.Derivative(sp.Symbol("E"), t), P)],
            "the rate of change of the mechanical energy equals the power of the non-conservative loads "
            "and reactions: dE/dt = Σ F_nc·v + τ_nc·ω.")
-    expr = dE - P
+    expr = red.reduce(dE - P)            # the dependent rates and accelerations in terms of q̇, q̈
     plain, back = algebra.plain_state(expr, [q])
     fwd = {v: k for k, v in back.items()}
     s = fwd.get(u)
     if s is None:
         raise NotApplicable("the energy balance does not involve the rate of the coordinate.", where=setup.system.name)
-    if not algebra.is_zero(plain.xreplace({s: 0})):
-        raise NotApplicable("the energy balance has terms that do not vanish with q̇ (a moving surface or a "
-                            "time-dependent constraint does work), so it is not q̇ times the equation of motion.",
-                            where=setup.system.name, hint="Use newton-euler for a rheonomic system.")
-    row = sp.cancel(sp.expand(plain) / s)
-    if sp.denom(sp.together(row)).has(s):
-        raise NotApplicable("the energy balance is not q̇ times an equation of motion (its power is not "
-                            "proportional to q̇).", where=setup.system.name)
-    row = sp.expand(row.xreplace(back))
+    rest = plain.xreplace({s: 0})
+    if not algebra.is_zero(rest):
+        raise NotApplicable(f"the energy balance has terms that do not vanish with {text(u)}: {_cause(rest, back)}, "
+                            f"so it is not {text(u)} times the equation of motion.", where=setup.system.name,
+                            hint="Use newton-euler.")
     acc = q.diff(t, 2)
-    c = row.coeff(acc)
+    if sp.count_ops(plain) <= algebra.SIMPLIFY_LIMIT:
+        row = sp.cancel(sp.expand(plain) / s)
+        if sp.denom(sp.together(row)).has(s):
+            raise NotApplicable("the energy balance is not q̇ times an equation of motion (its power is not "
+                                "proportional to q̇).", where=setup.system.name)
+        row = sp.expand(row.xreplace(back))
+        c = row.coeff(acc)
+        lhs = -(row - c * acc)
+    else:
+        c, lhs = _divided_by_rate(plain, s, fwd.get(acc), back, setup)
     if c == 0:
         raise NotApplicable("the energy balance does not involve the acceleration.", where=setup.system.name)
-    lhs, rhs = -(row - c * acc), kin.simplify_expr(c) * acc
+    lhs, rhs = lhs, kin.simplify_expr(c) * acc
     eq = BalanceEquation(f"work–energy: dE/dt = ΣP_nc, divided by {text(u)}", "system", METHOD,
                             kin.simplify_expr(lhs), rhs)
     tr.add("Balance laws", "Equation of motion from the work–energy law", [(eq.lhs, eq.rhs)],
            f"dE/dt − ΣP_nc = {text(u)}·(equation of motion) for one degree of freedom; divided by {text(u)}.")
     return [eq]
+
+
+def _divided_by_rate(plain, s, a, back, setup):
+    """(coefficient of q̈, the rest) of (dE/dt − ΣP_nc)/q̇ without expanding a large expression: the
+    balance is a cubic in q̇ with no constant term (T is quadratic in the rates), so its quotient by q̇
+    is Σ c_k q̇^(k−1), c_k = (∂^k/∂q̇^k at q̇ = 0)/k! — checked at random states."""
+    coeffs, d = [], plain
+    for k in (1, 2, 3):
+        d = sp.diff(d, s)
+        coeffs.append(d.xreplace({s: 0}) / sp.factorial(k))
+    row = sum((c * s ** k for k, c in enumerate(coeffs)), sp.Integer(0))
+    if not algebra.is_zero(plain - s * row):
+        raise NotApplicable("the energy balance is not q̇ times an equation of motion (its power is not "
+                            "proportional to q̇).", where=setup.system.name)
+    if a is None:
+        return sp.Integer(0), row.xreplace(back)
+    c = sp.diff(row, a)
+    if c != 0 and not algebra.is_zero(sp.diff(c, a)):
+        raise NotApplicable("the energy balance is not linear in the acceleration.", where=setup.system.name)
+    return c.xreplace(back), -row.xreplace({a: 0}).xreplace(back)
+
+
+def _cause(rest, back) -> str:
+    """What keeps power flowing at rest: a driving law (explicit t), or the terms themselves."""
+    if rest.has(t):
+        return "the constraints or loads depend on t explicitly (a driven motion or moving support does work)"
+    left = rest.xreplace(back)
+    shown = text(left) if sp.count_ops(left) < 60 else "a power that does not vanish at rest"
+    return f"{shown} remains at rest (a load whose power is not proportional to the rate)"
 
 
 def energy_balance(system, start: dict, end: dict, unknowns, mode: dict | None = None,
