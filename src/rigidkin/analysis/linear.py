@@ -328,12 +328,14 @@ def residual_at(M, f, point, n: int) -> sp.Matrix:
 
 
 def linearise_about(solution, at: Mapping, rest: bool = False, inputs: Sequence = (), check: bool = True,
-                    values: Mapping | None = None, what: str = "steady motion") -> SteadyMotion:
+                    values: Mapping | None = None, what: str = "steady motion",
+                    full_state: bool = False) -> SteadyMotion:
     """Linearise ``solution`` about the operating point ``at`` (see the module's docstring).
 
     ``rest``: an equilibrium (every rate zero; only coordinates given).  ``inputs``: symbols or functions
     of t in the forcing, whose columns form B (their operating values from ``at``, else as they are).
     ``values``: the parameters' numbers for the back-substitution and the eigenvalues (default: declared).
+    ``full_state``: keep ignorable coordinates as states too (the state (q, q̇) of a control model).
     """
     regime, M, f = single_regime(solution, f"{what}'s linearisation")
     vals = {p.symbol: p.value for p in solution.system.parameter_info.values() if p.value is not None}
@@ -342,7 +344,7 @@ def linearise_about(solution, at: Mapping, rest: bool = False, inputs: Sequence 
     us = [q.diff(t) for q in qs]
     found = present(list(M) + list(f))
     extra = [q for q in solution.dependent if q in found and not isinstance(q, sp.Derivative)]
-    ignorable = tuple(q for q in qs if q not in found)
+    ignorable = () if full_state else tuple(q for q in qs if q not in found)
     kept = [q for q in qs if q not in ignorable]
     point = _point(solution, at, rest, kept, what)
     notes = []

@@ -6,7 +6,8 @@ The state is x = (q, q̇) of the solution's independent coordinates and u the sy
     A = [[0, 1], [M⁻¹ ∂f/∂q, M⁻¹ ∂f/∂q̇]],   B = [[0], [M⁻¹ ∂f/∂u]]     at (q*, q̇*, u*),
 
 exact when the operating point is a steady motion (q̈ = M⁻¹f = 0 there: an equilibrium, or uniform
-rates of coordinates that f does not depend on); any other point is refused with its residual q̈.
+rates of coordinates that f does not depend on); any other point is refused with its residual q̈.  The
+check, the elimination of dependent coordinates and A, B are :mod:`rigidkin.analysis.linear`'s.
 Outputs are coordinates (``"x"``), rates (``"dot(x)"``) and reactions (``"N_A"``): their rows of C and
 D are the derivatives of their expressions at the operating point.  Everything is closed form
 (sympy matrices in the parameters); :meth:`StateSpace.numeric` puts the parameters' values in.
@@ -22,10 +23,12 @@ from sympy.physics.vector import dynamicsymbols
 
 from ..base import algebra
 from ..base.errors import RigidkinError
+from ..derive.kinematics import linear_form
 from ..model.inputs import inputs_of
 from ..model.speeds import require_rate_speeds
 from .events import _num, numeric_values
 from .integrals import single_regime
+from .linear import _at, linearise_about, position_gaps
 
 t = dynamicsymbols._t
 
@@ -94,7 +97,9 @@ def state_space(solution, at: Mapping, inputs: Mapping | None = None, outputs: S
 
     ``at`` maps coordinates (name or q(t)) and rates (``"dot(x)"`` or q̇) to values (rates default 0);
     ``inputs`` maps input names to their values u* there (default 0); ``outputs`` names coordinates,
-    rates or reactions.  Refused unless the operating point is a steady motion (q̈ = 0 there).
+    rates or reactions.  Refused unless the operating point is a steady motion (q̈ = 0 there); the
+    check, the elimination of dependent coordinates and A, B are :func:`rigidkin.analysis.linear.linearise_about`'s
+    (every coordinate kept as a state, ignorable ones included).
     """
     if not hasattr(solution, "regimes"):            # a System: solve it first
         solution = solution.solve()
@@ -114,7 +119,8 @@ def state_space(solution, at: Mapping, inputs: Mapping | None = None, outputs: S
     qs = list(solution.coordinates)
     us = [q.diff(t) for q in qs]
     M, f = regime.raw_mass_matrix, regime.raw_forcing
-    hidden = [q for q in system.coordinates if q not in qs and (M.has(q) or f.has(q))]
+    fixed = {q for q in system.coordinates if any(sp.sympify(g).has(q) for _, g in position_gaps(solution))}
+    hidden = [q for q in system.coordinates if q not in qs and q not in fixed and (M.has(q) or f.has(q))]
     if hidden:
         names = ", ".join(q.func.__name__ for q in hidden)
         raise RigidkinError(f"the equations of motion depend on {names}, which the constraints give only through "
@@ -122,41 +128,25 @@ def state_space(solution, at: Mapping, inputs: Mapping | None = None, outputs: S
                             "coordinates does not determine the motion.", where="state_space",
                             hint="Linearise in every coordinate and the independent speeds numerically "
                                  "(rigidkin.numeric.large.projected.ProjectedModel), or simulate.")
-    Mo = M.xreplace(point).applyfunc(algebra.readable)
-    fo = f.xreplace(point)
-    values = numeric_values(solution)
-    # a steady motion: M⁻¹ f vanishes at the operating point
-    residual = [algebra.readable(e) for e in Mo.LUsolve(fo)]
-    bad = [(q, r) for q, r in zip(qs, residual) if r != 0 and abs(_num(r, values)) > tol]
-    if bad:
-        what = "; ".join(f"{q.func.__name__}'' = {r}" for q, r in bad)
-        raise RigidkinError(f"the operating point is not a steady motion: the accelerations do not vanish there "
-                            f"({what}).", where="state_space",
-                            hint="Linearise about an equilibrium (or a steady motion): choose the coordinates, rates "
-                                 "and input values that make every acceleration zero.")
-    n = len(qs)
-    Kq = f.jacobian(qs).xreplace(point)
-    Ku = f.jacobian(us).xreplace(point)
-    Fu = f.jacobian(u_syms).xreplace(point) if u_syms else sp.zeros(n, 0)
-    lower_q = Mo.LUsolve(Kq).applyfunc(algebra.readable)
-    lower_u = Mo.LUsolve(Ku).applyfunc(algebra.readable)
-    A = sp.zeros(2 * n, 2 * n)
-    A[:n, n:] = sp.eye(n)
-    A[n:, :n] = lower_q
-    A[n:, n:] = lower_u
-    B = sp.zeros(2 * n, len(u_syms))
-    if u_syms:
-        B[n:, :] = Mo.LUsolve(Fu).applyfunc(algebra.readable)
-    C, D, names = _outputs(solution, regime, outputs, qs, us, u_syms, point)
-    ss = StateSpace(A, B, C, D, tuple(q.func.__name__ for q in qs) + tuple(f"dot({q.func.__name__})" for q in qs),
-                    tuple(declared), names, point, dict(system.parameter_values()))
-    return ss
+    values = {k: v for k, v in numeric_values(solution).items() if k in set(system.parameters.values())}
+    lin = linearise_about(solution, point, inputs=u_syms, values=values, what="state_space", full_state=True)
+    C, D, names = _outputs(solution, regime, outputs, qs, us, u_syms, lin)
+    return StateSpace(lin.A, lin.B, C, D,
+                      tuple(q.func.__name__ for q in qs) + tuple(f"dot({q.func.__name__})" for q in qs),
+                      tuple(declared), names, dict(lin.point), dict(system.parameter_values()))
 
 
-def _outputs(solution, regime, outputs, qs, us, u_syms, point):
+def _outputs(solution, regime, outputs, qs, us, u_syms, lin):
+    """Rows of C and D: each output's derivatives at the point, dependent coordinates by the chain rule."""
     n, m = len(qs), len(u_syms)
+    point = dict(lin.point)
     rows_c, rows_d, names = [], [], []
-    state = qs + us
+    dep_rates = {q.diff(t): sp.sympify(solution.rate_relations[q.diff(t)]) for q in lin.dependent}
+    chain = {}
+    for q in lin.dependent:             # ∂q_d/∂q_i: the coefficient of q̇_i in the rate relation
+        A_, _ = linear_form([dep_rates[q.diff(t)]], us)
+        chain[q] = [_at(A_[0, j], point) for j in range(n)]
+    acc = {q.diff(t, 2): a for q, a in dict(regime.accelerations).items()}
     for name in outputs:
         key = str(name).strip()
         expr = None
@@ -173,11 +163,15 @@ def _outputs(solution, regime, outputs, qs, us, u_syms, point):
                                     where="state_space outputs", hint=f"Outputs may be: {', '.join(known)} "
                                                                       "(rates: dot(NAME)).")
             expr = dict(reactions)[key]
-        expr = sp.sympify(expr)
-        acc = {q.diff(t, 2): a for q, a in dict(regime.accelerations).items()}
-        expr = expr.xreplace(acc)
-        rows_c.append([algebra.readable(sp.diff(expr, s).xreplace(point)) for s in state])
-        rows_d.append([algebra.readable(sp.diff(expr, u).xreplace(point)) for u in u_syms])
+        expr = sp.sympify(expr).xreplace(acc).xreplace(dep_rates)
+        row = []
+        for j, s in enumerate(qs + us):
+            d = sp.diff(expr, s)
+            if j < n:
+                d = d + sum((sp.diff(expr, qd) * chain[qd][j] for qd in lin.dependent), sp.Integer(0))
+            row.append(algebra.readable(_at(d, point)))
+        rows_c.append(row)
+        rows_d.append([algebra.readable(_at(sp.diff(expr, u), point)) for u in u_syms])
         names.append(key)
     C = sp.Matrix(rows_c) if rows_c else sp.zeros(0, 2 * n)
     D = sp.Matrix(rows_d) if rows_d and m else sp.zeros(len(rows_c), m)
