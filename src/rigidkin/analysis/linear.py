@@ -30,6 +30,7 @@ from ..base import algebra
 from ..base.errors import InputError, RigidkinError
 from ..base.printing import text
 from ..derive.kinematics import linear_form
+from ..model.inputs import input_symbols
 from ..model.speeds import require_rate_speeds
 
 t = dynamicsymbols._t
@@ -143,8 +144,9 @@ def _numeric_roots(cond, p, vals) -> tuple:
 
 
 # the operating point --------------------------------------------------------------------------------
-def single_regime(solution, what: str):
-    """The one regime of ``solution`` with its M and f (rate speeds required)."""
+def single_regime(solution, what: str, keep_inputs: Sequence = ()):
+    """The one regime of ``solution`` with its M and f (rate speeds required); inputs u(t) other than
+    ``keep_inputs`` are held at zero (an equilibrium of the unforced system)."""
     require_rate_speeds(solution.system, what)
     if len(solution.regimes) != 1:
         raise RigidkinError(f"the solution has {len(solution.regimes)} regimes; {what} is taken in one.",
@@ -155,7 +157,11 @@ def single_regime(solution, what: str):
     rel = dict(solution.relations)
     if rel:
         M, f = (algebra.substitute(X, rel) for X in (M, f))
-    return regime, sp.Matrix(M), sp.Matrix(f)
+    M, f = sp.Matrix(M), sp.Matrix(f)
+    held = {u: sp.Integer(0) for u in input_symbols(solution.system) if u not in set(keep_inputs)}
+    if held:                    # inputs u(t) not asked for are held at u* = 0
+        M, f = M.xreplace(held), f.xreplace(held)
+    return regime, M, f
 
 
 def present(exprs) -> set:
@@ -337,7 +343,7 @@ def linearise_about(solution, at: Mapping, rest: bool = False, inputs: Sequence 
     ``values``: the parameters' numbers for the back-substitution and the eigenvalues (default: declared).
     ``full_state``: keep ignorable coordinates as states too (the state (q, q̇) of a control model).
     """
-    regime, M, f = single_regime(solution, f"{what}'s linearisation")
+    regime, M, f = single_regime(solution, f"{what}'s linearisation", keep_inputs=inputs)
     vals = {p.symbol: p.value for p in solution.system.parameter_info.values() if p.value is not None}
     vals.update(dict(values or {}))
     qs = list(solution.coordinates)
