@@ -169,3 +169,20 @@ def test_simulate_refuses_missing_and_unknown_inputs():
         simulate(s, 1.0, {"theta": 0.1}, inputs={"F": ([0, 0], [1, 2])})
     with pytest.raises(InputError, match="as well as on time"):
         simulate(s, 1.0, {"theta": 0.1}, inputs={"F": s.coordinates[0]})
+
+
+def test_equilibria_hold_the_input_at_zero():
+    """The unforced cart-pendulum's equilibria (F* = 0): hanging, with ω² = 6 g (M + m) / (l (4M + m)) by hand
+    from (M + m) ẍ + (m l/2) θ̈ = 0 and (m l²/3) θ̈ + (m l/2) ẍ + (m g l/2) θ = 0; upright, unstable."""
+    from rigidkin.analysis.equilibrium import equilibria
+
+    s = cart_pendulum(values=True)
+    found = {str(e).split(":")[0]: e for e in equilibria(s.solve())}
+    assert set(found) == {"equilibrium θ = 0, x = 0", "equilibrium θ = pi, x = 0"}
+    M, m, l, g = 2.0, 0.5, 0.8, 9.81
+    hanging = found["equilibrium θ = 0, x = 0"]
+    assert "stable" in str(hanging) and "unstable" not in str(hanging)
+    assert "unstable" in str(found["equilibrium θ = pi, x = 0"])
+    w2 = 6 * g * (M + m) / (l * (4 * M + m))
+    assert abs(float(sp.sympify(str(hanging).split("ω_n = ")[1].replace("·", "*")).subs(
+        {"g": g, "M": M, "m": m, "l": l})) - w2 ** 0.5) < 1e-9
