@@ -190,8 +190,21 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
             proposal = None
         dec = decide(hyb, t0, y, p, proposal, every=_sliding(hyb, cand, t0, y, p))
         mode_, k = dec.mode, dec.regime
-        return hyb.project_rates(mode_, t0, y, p), mode_, k
+        y = hyb.project_rates(mode_, t0, y, p)
+        _check_domain(hyb.model(mode_, k), t0, y, p, where)
+        return y, mode_, k
     raise InputError("no set of open and closed contacts fits the initial state.", where=system.name)
+
+
+def _check_domain(model, t_, y, p, where: str) -> None:
+    """Refuse a starting state outside a contact's domain of validity (a disk leaned past lying flat)."""
+    vals = model.watch_values(t_, np.concatenate([y, [0.0]]), p)
+    for w, v in zip(model.watches, vals):
+        if w.kind == "domain" and not v > 0:
+            raise InputError(f"the initial state lies outside the configurations the geometry of contact {w.name} "
+                             f"describes: {w.quantity} = {v:.6g}, and it holds only while {w.quantity} > 0.",
+                             where=where, hint="Start on the side that the model was derived for (a disk: "
+                                               "a lean below 90°, not past lying flat).")
 
 
 def _sliding(hyb, mode, t_, y, p) -> bool:
@@ -342,6 +355,14 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
                                 hyb.model(mode_, k).description, "; ".join(nts)))
             continue
         w = model.watches[watch_of[i]]
+        if w.kind == "domain":           # the contact geometry ends here (a disk lying flat): no model beyond
+            status, stop = "stopped", "outside-domain"
+            message = f"at t = {t_now:.10g} {w.label} ({w.quantity} = 0): {w.detail}."
+            seg = segments[-1]           # the equations are singular on the boundary itself: end just before it
+            segments[-1] = replace(seg, t1=t_now - 1e-6 * (t_now - seg.t0))
+            events.append(Event(f"{w.label}: the simulation stops", "stop", w.name, t_now, before, before,
+                                model.description, "", w.detail))
+            break
         try:
             mode_, k, y, ev = _transition(hyb, model, w, t_now, y, p, e_of, rest_speed)
             mode2, k2, note = confirm(hyb, hyb.model(mode_, k), t_now, y, p)     # every touching contact

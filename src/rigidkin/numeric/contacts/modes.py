@@ -119,6 +119,8 @@ class Hybrid:
             return len(watches) - 1
 
         for name, c in self.contacts.items():
+            for dom, what, why in (c.domain(kin) if hasattr(c, "domain") else ()):    # the geometry's validity
+                watch(Watch("domain", name, what, -1, quantity=show(dom), detail=why), dom)
             st = mode[name]
             if st == OPEN:
                 watch(Watch("impact", name, f"impact at {name}", -1, quantity=f"gap of {name}"),
