@@ -34,7 +34,7 @@ from .large.route import numeric_route, simulate_tree
 from .large.tree import NotATree
 from .result import Event, Segment, SimulationResult, build_result
 from .rhs import RHS, SimulationError, compile_functions
-from .state import StateLayout, initial_values, parameter_vector
+from .state import StateLayout, assembled_changes, initial_values, parameter_vector
 
 t = dynamicsymbols._t
 
@@ -139,9 +139,9 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
             if rel_slots is None:
                 hyb.relation_functions(cand, integrated=True)       # ModeUnavailable: the model's reason
         for s, v in zip(rel_slots, rel_fn(t0, *y, *p) if rel_slots else ()):
-            if s not in given:
+            if s not in given and np.isfinite(float(v)):       # no real value: left to the assembly's refusal
                 y[s] = float(v)
-        y = hyb.close_loops(cand, t0, y, p, keep=set(explicit))
+        y = hyb.assemble(cand, t0, y, p, where)                 # Newton onto the bilateral constraints
         for s, v in zip(rate_slots, rate_fn(t0, *y, *p) if rate_slots else ()):
             if n + s not in given:
                 y[n + s] = float(v)
@@ -164,7 +164,7 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
         bad = []
         rel = dict(zip(rel_slots, map(float, rel_fn(t0, *y, *p)))) if rel_slots else {}
         for s, want in rel.items():
-            if abs(y[s] - want) > 1e-9 * max(1.0, abs(want)):
+            if np.isfinite(want) and abs(y[s] - want) > 1e-9 * max(1.0, abs(want)):
                 if s in explicit and hyb._depends_on(cand, lay.coordinates[s]):
                     bad.append(f"{lay.names[s]} = {y[s]:g} (the constraints give {want:.6g})")
                 elif s not in explicit:
@@ -190,7 +190,7 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
             proposal = None
         dec = decide(hyb, t0, y, p, proposal, every=_sliding(hyb, cand, t0, y, p))
         mode_, k = dec.mode, dec.regime
-        y = hyb.project_rates(mode_, t0, y, p)
+        y = hyb.project_rates(mode_, t0, hyb.assemble(mode_, t0, y, p, where), p)
         _check_domain(hyb.model(mode_, k), t0, y, p, where)
         return y, mode_, k
     raise InputError("no set of open and closed contacts fits the initial state.", where=system.name)
@@ -263,11 +263,16 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
                                      f"than its kinetic one µk = {mu_k:g}.", where="parameters",
                                      hint="Give µs ≥ µk (a single µ means both).")
     y_q, mode_, k = initial_conditions(system, initial_state, {**base, **dict(phases[0].params)}, mode, t0)
+    explicit, declared = initial_values(system, lay, initial_state)
+    assembled = assembled_changes(lay, {**declared, **explicit}, y_q)
     until_fns = [_phase_function(lay, ph) for ph in phases]
     y = np.concatenate([y_q, [0.0]])      # the last slot: work of non-conservative loads and impulses
     segments: list[Segment] = []
     events: list[Event] = []
-    notes: list[str] = []
+    notes: list[str] = [f"the starting value {nm} = {a:.10g} was given and the constraints need {b:.10g}: the start is "
+                        "assembled there (Newton's method from the value given)" for nm, (a, b) in assembled.items()
+                        if lay.names.index(nm) in explicit]
+    assembled = {nm: v for nm, v in assembled.items() if lay.names.index(nm) not in explicit}   # declared ones
     status, message, stop = "completed", f"reached t = {t1:g}", "completed"
     ph, ph_start = 0, t0
     t_now = t0
@@ -386,6 +391,7 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
     result = build_result(system, lay, segments, events, status, message, n_points=n_points,
                           energy_tol=energy_tol, residual_tol=residual_tol, notes=notes)
     result.stop_reason = stop
+    result.assembled = assembled          # declared coordinates moved onto the constraints: (declared, assembled)
     for wmsg in result.warnings:
         warnings.warn(wmsg, RuntimeWarning, stacklevel=2)
     return result
