@@ -46,7 +46,8 @@ Q = { offset = "c*Ex" }
 rod = { shape = "slender_rod", mass = "m", length = "l", axis = "y", frame = "R", at = "G" }
 [constraints]
 O = { type = "pin", point = "O", body_a = "rod" }
-B = { type = "contact", body = "rod", centre = "B", unilateral = false, surface = { type = "line", point = "Q", normal = "-Ex" } }
+B = { type = "contact", body = "rod", centre = "B", unilateral = false, \
+      surface = { type = "line", point = "Q", normal = "-Ex" } }
 [loads]
 gravity = { type = "gravity", g = "g" }
 """

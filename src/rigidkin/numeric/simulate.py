@@ -390,7 +390,8 @@ def simulate(system, t_span, initial_state: Mapping | None = None, params: Mappi
         progress(t_now, t1)
     result = build_result(system, lay, segments, events, status, message, n_points=n_points,
                           energy_tol=energy_tol, residual_tol=residual_tol, notes=notes)
-    result.stop_reason = stop
+    if result.stop_reason == "completed":      # else the monitors stopped it (constraint or energy drift)
+        result.stop_reason = stop
     result.assembled = assembled          # declared coordinates moved onto the constraints: (declared, assembled)
     for wmsg in result.warnings:
         warnings.warn(wmsg, RuntimeWarning, stacklevel=2)

@@ -202,7 +202,7 @@ def assemble(cons: PositionConstraints, layout: StateLayout, t_, y, p, where: st
     free = list(cons.free)
     best = y
     if free and np.all(np.isfinite(r0)):
-        from scipy.optimize import least_squares   # here: the state module stays light
+        from scipy.optimize import least_squares  # here: the state module stays light
 
         def resid(z):
             yy = y.copy()

@@ -74,7 +74,8 @@ class ModeModel:
     residual_names: list
     friction_names: list
     conservative: bool
-    steady: frozenset = frozenset()   # watches that cannot change: a mode at rest, no explicit time
+    steady: frozenset = frozenset()   # watches that cannot change: a mode at rest, no explicit time; a reaction
+    #                                   identically zero (by symmetry)
 
     @property
     def regime(self):

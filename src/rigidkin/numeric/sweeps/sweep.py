@@ -30,12 +30,12 @@ from ..compiled.codesafe import safe_lambdify
 from ..compiled.csource import _CDEF, c_source
 from ..compiled.kernel import Kernel
 from ..state import StateLayout, parameter_vector, quantity
-from .sweep_start import assemble_runs, start_gaps
 from .batch_dask import integrate_dask
 from .exprtree import NotEncodable, encode
 from .sweep_plan import axis, axis_length, check_runs, complete, declared_state, runs_grid  # noqa: F401  (public here)
 from .sweep_record import make
 from .sweep_result import SweepResult, status_text  # noqa: F401  (public through here)
+from .sweep_start import assemble_runs, start_gaps
 
 t = dynamicsymbols._t
 

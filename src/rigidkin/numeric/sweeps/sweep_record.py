@@ -54,7 +54,8 @@ def make(system, layout, rel: tuple[list, list], events, source: str, cdef: str,
     return {"version": VERSION, "system": system.name, "labels": list(layout.labels),
             "parameters": list(layout.parameters), "n": n, "base_p": base_p, "y_base": y_base,
             "coordinates": [[i, tree] for i, tree in rel[0]], "rates": [[i, tree] for i, tree in rel[1]],
-            "starts": list(starts), "counts": [len(system.coordinate_info), len(system.parameter_info), len(system.constraints)],
+            "starts": list(starts),
+            "counts": [len(system.coordinate_info), len(system.parameter_info), len(system.constraints)],
             "events": [[e.name, e.output, e.direction, bool(e.terminal)] for e in events],
             "source": source, "cdef": cdef}
 
