@@ -152,7 +152,7 @@ def _solve(args) -> tuple[str, int]:
             sol = guarded(args, system.solve, method=args.method, mode=parse_modes(args.mode))
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
-    _check_start(args, system, spec)
+    check_declared_start(args, system, spec, parse_modes(args.mode))
     answers, notes = answer_questions(system, spec, args, derived)
     try:
         with progress("Writing the solution"):
@@ -170,12 +170,12 @@ def _solve(args) -> tuple[str, int]:
     return text, EXIT_UNANSWERED if unanswered else 0
 
 
-def _check_start(args, system, spec) -> None:
+def check_declared_start(args, system, spec, mode=None) -> None:
     """The declared starting state put onto the constraints (numeric.starts), or the one-paragraph refusal."""
     from ..numeric.starts import declared_start
 
     try:
-        moved = guarded(args, declared_start, system, parse_modes(args.mode))
+        moved = guarded(args, declared_start, system, mode)
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
     if moved:                   # a warning: said on stderr, and the output is not kept for a repeat

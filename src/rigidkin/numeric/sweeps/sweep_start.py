@@ -15,7 +15,7 @@ from ...base.errors import InputError
 from ...derive.derivation import derivation_of
 from ..contacts.modes import Hybrid
 from ..contacts.vocabulary import OPEN
-from ..state import StateLayout, assemble, assembly_tolerance
+from ..state import StateLayout, assemble
 
 
 def _run_text(layout: StateLayout, y, p) -> str:
@@ -38,16 +38,30 @@ def start_gaps(system, mode, layout: StateLayout) -> list:
     return [layout.to_plain(g) for g in gaps]
 
 
+def _columns(fn, Y: np.ndarray, P: np.ndarray, n: int, count: int) -> np.ndarray | None:
+    """The function's values at every run at once (runs × count), or None where it does not vectorise."""
+    try:
+        with np.errstate(all="ignore"):
+            vals = fn(0.0, *Y[:, :2 * n].T, *P.T)
+        out = np.column_stack([np.broadcast_to(np.asarray(v, dtype=float), (len(Y),)) for v in vals][:count])
+    except (TypeError, ValueError):
+        return None
+    return out if out.shape == (len(Y), count) else None
+
+
 def assemble_runs(system, mode, layout: StateLayout, Y: np.ndarray, P: np.ndarray, where: str = "sweep") -> bool:
     """Assemble each run's start (rows of ``Y``, parameters ``P``) in place; True when a coordinate moved (the
     dependent rates are then to be completed again).  InputError for a run that cannot start in the mode."""
     hyb, full = _hybrid_and_mode(system, mode)
     cons = hyb.position_constraints(full)
     n = layout.n
+    tol = 1e-9 * np.maximum(1.0, np.max(np.abs(Y[:, :n]), axis=1)) if n else np.full(len(Y), 1e-9)
     moved = False
-    for r in range(len(Y)):
-        y, p = Y[r], P[r]
-        if cons.labels:
+    if cons.labels:
+        vals = _columns(cons.function, Y, P, n, len(cons.labels))
+        todo = range(len(Y)) if vals is None else np.flatnonzero(~np.all(np.abs(vals) <= tol[:, None], axis=1))
+        for r in todo:                      # Newton for the runs off their constraints only
+            y, p = Y[r], P[r]
             try:
                 y2 = assemble(cons, layout, 0.0, y, p, f"{where}, run {r + 1}")
             except InputError as exc:
@@ -56,18 +70,23 @@ def assemble_runs(system, mode, layout: StateLayout, Y: np.ndarray, P: np.ndarra
             if np.any(y2[:n] != y[:n]):
                 Y[r, :n] = y2[:n]
                 moved = True
-        tol = assembly_tolerance(Y[r], n)
-        for name, c in hyb.contacts.items():
-            if full.get(name, OPEN) == OPEN or not c.unilateral:
-                continue
-            gap = hyb.contact_state(name, 0.0, Y[r], p)[0]
-            if gap < -tol:
-                raise InputError(f"run {r + 1} ({_run_text(layout, Y[r], p)}) puts contact {name} {-gap:.6g} into "
-                                 "its surface.", where=where,
-                                 hint="Give starting values that keep the bodies outside the surfaces they touch.")
-            if gap > tol:
-                raise InputError(f"run {r + 1} ({_run_text(layout, Y[r], p)}) starts with contact {name} apart "
-                                 f"(gap {gap:.6g}), but the sweep integrates the mode in which it is closed.",
-                                 where=where, hint=f"Sweep the mode with it open (--mode {name}=open), or "
-                                                   "start the runs with it touching.")
+    for name, c in hyb.contacts.items():
+        if full.get(name, OPEN) == OPEN or not c.unilateral:
+            continue
+        fn, count = hyb.contact_functions(name)
+        vals = _columns(fn, Y, P, n, count)
+        gaps = vals[:, 0] if vals is not None else np.array([hyb.contact_state(name, 0.0, y, p)[0]
+                                                               for y, p in zip(Y, P)])
+        inside, apart = np.flatnonzero(gaps < -tol), np.flatnonzero(gaps > tol)
+        if len(inside):
+            r = int(inside[0])
+            raise InputError(f"run {r + 1} ({_run_text(layout, Y[r], P[r])}) puts contact {name} {-gaps[r]:.6g} "
+                             "into its surface.", where=where,
+                             hint="Give starting values that keep the bodies outside the surfaces they touch.")
+        if len(apart):
+            r = int(apart[0])
+            raise InputError(f"run {r + 1} ({_run_text(layout, Y[r], P[r])}) starts with contact {name} apart "
+                             f"(gap {gaps[r]:.6g}), but the sweep integrates the mode in which it is closed.",
+                             where=where, hint=f"Sweep the mode with it open (--mode {name}=open), or "
+                                               "start the runs with it touching.")
     return moved
