@@ -100,8 +100,11 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
     coordinate; the dependent coordinates without a value follow from the constraints of the mode
     (their integrated relations and rate relations), the rest are zero.  A contact that the values
     put apart (gap > 0) or that they move apart (normal speed > 0) starts open; one they push into
-    its surface is an error.  A declared value that contradicts a closed constraint yields to it; a
-    given one is an error.
+    its surface is an error.  The coordinates are then put onto the bilateral position constraints by
+    Newton's method from the values given or declared, the dependent ones moving (a given value that moves
+    is a warning; a start that cannot be assembled is refused naming the constraint and its residual:
+    :func:`rigidkin.numeric.state.assemble`); a given rate that contradicts a closed constraint is an
+    error; a start outside a contact's domain of validity (a disk past lying flat) is refused.
     """
     hyb = hybrid_of(system)
     lay = hyb.layout
