@@ -140,3 +140,17 @@ def test_solve_refuses_a_declared_start_the_constraints_cannot_reach(tmp_path, c
     assert "contact B keeps a residual of 0.6" in capsys.readouterr().err
     assert main(["solve", str(near), "--no-cache"]) == 0
     assert "theta = 0.5235987756 (declared 0.3)" in capsys.readouterr().err
+
+
+def test_a_sweeps_record_answers_only_starts_on_the_constraints():
+    from rigidkin.numeric.sweeps import sweep_record
+
+    ladder = build("ladder")
+    res = sweep(ladder, {"theta": [0.3, 0.4]}, t_end=0.1, keep_record=True)
+    if res.record is None:
+        pytest.skip("no C compiler: no record is kept")
+    rec = res.record
+    assert len(rec["starts"]) == 2                           # the wall and the floor under the foot
+    _, _, Y = sweep_record.plan(rec, {"theta": [0.3, 0.4]}, {}, {})
+    assert np.allclose(Y[:, 1], 2 * np.sin([0.3, 0.4]))      # x = l sin θ: on the wall
+    assert sweep_record.plan(rec, {"theta": [0.3, 0.4]}, {}, {"x": "0.1"}) is None    # the full route refuses
