@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import sympy as sp
 
 import rigidkin as rk
 from rigidkin.analysis.equilibrium import equilibria
@@ -81,3 +82,9 @@ def test_cli_stops_with_exit_3(capsys):
     err = capsys.readouterr().err
     assert rc == 3
     assert "outside-domain" in err and "lie flat" in err
+
+
+def test_the_answers_state_the_domain(coin):
+    theta = coin.coordinates[1]
+    conds = [c for c in coin.solve().regimes[0].validity if "lying flat" in c.label]
+    assert len(conds) == 1 and (conds[0].expr - sp.cos(theta)).simplify() == 0

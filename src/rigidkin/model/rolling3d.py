@@ -87,6 +87,12 @@ class DiskContact(Contact):
                                  "plane) does not describe")]
         return cache[self.name]
 
+    def validity(self, setup, react) -> list:
+        """The contact's conditions (friction within its cone) and its geometry's domain: the disk not past flat."""
+        return [*super().validity(setup, react),
+                *((expr, f"the disk of contact {self.name} not lying flat (its rim, not its face, on the plane)")
+                  for expr, _, _ in self.domain(setup.kin))]
+
     def location(self, kin) -> Vector:
         return kin.position(self.centre) - self.radius * self.rim_direction(kin)
 
