@@ -98,14 +98,30 @@ def equilibria(solution, limit: int = 8) -> list[Equilibrium]:
             continue
         for q in qs:
             conf.setdefault(q, sp.Integer(0))
-        if _off_arc(solution, regime, conf):
-            continue            # a contact point off its profile's arc: not a configuration of the model
+        if _off_arc(solution, regime, conf) or _off_domain(solution, conf):
+            continue            # a contact point off its profile's arc, a disk past lying flat: not the model's
         out.append(linearise(solution, conf))
     if not out:
         raise RigidkinError("every equilibrium configuration found puts a contact point off its profile's arc "
-                            "(the curved face of a half shape does not touch there), or is not real, so the "
-                            "model has none.")
+                            "(the curved face of a half shape does not touch there) or a contact outside the "
+                            "configurations its geometry describes (a disk past lying flat), or is not real, so "
+                            "the model has none.")
     return out
+
+
+def _off_domain(solution, conf) -> bool:
+    """True when ``conf`` lies outside a contact's domain of validity (``domain``: a disk leaned past flat)."""
+    values = numeric_values(solution)
+    kin = solution.setup.kin
+    for c in solution.system.constraints.values():
+        for expr, _, _ in (c.domain(kin) if hasattr(c, "domain") else ()):
+            try:
+                v = _num(sp.sympify(expr).xreplace(conf), values)
+            except (TypeError, ValueError):
+                continue
+            if not v > 1e-12:
+                return True
+    return False
 
 
 def _off_arc(solution, regime, conf) -> bool:

@@ -14,7 +14,7 @@ from ..io.load import value
 from ..report.blocks import Animation
 from .common import guarded, open_problem, progress, with_file
 from .options import add_no_cache, add_timeout, end_time
-from .solve import answer_questions
+from .solve import answer_questions, check_declared_start
 
 
 def register(sub) -> None:
@@ -87,6 +87,7 @@ def run(args) -> int:
     try:
         with progress(f"Deriving the equations of motion ({args.method})"):
             solution = guarded(args, system.solve, method=args.method, mode=mode)
+        check_declared_start(args, system, spec, mode)     # the declared start, by simulate's rule
         answers, _ = answer_questions(system, spec, args, derived)
         result = None
         if args.simulate is not None:

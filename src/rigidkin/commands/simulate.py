@@ -187,6 +187,10 @@ def run(args) -> int:
                 print(terminal_safe(f"Wrote the {what} to {path}"))
     for w in result.warnings:
         print(f"rigidkin: warning: {terminal_safe(w)}", file=sys.stderr)
+    moved = getattr(result, "assembled", {})
+    if moved:                        # the start put onto the position constraints (numeric.state.assemble)
+        print(terminal_safe("rigidkin: note: the starting state is assembled onto the constraints: " + ", ".join(
+            f"{nm} = {b:.10g} (declared {a:.10g})" for nm, (a, b) in moved.items())), file=sys.stderr)
     if not result.reached_end:       # stopped early: the model cannot go on (reason and state printed above)
         print(terminal_safe(f"rigidkin: the simulation stopped at t = {result.t_final:.10g} before the end time "
                             f"({result.stop_reason}): {result.message}"), file=sys.stderr)

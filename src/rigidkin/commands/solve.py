@@ -98,6 +98,7 @@ def _solve(args) -> tuple[str, int]:
             sol = guarded(args, system.solve, method=args.method, mode=parse_modes(args.mode))
     except RigidkinError as exc:
         raise with_file(exc, spec) from None
+    check_declared_start(args, system, spec, parse_modes(args.mode))
     answers, notes = answer_questions(system, spec, args, derived)
     try:
         with progress("Writing the solution"):
@@ -116,3 +117,18 @@ def _solve(args) -> tuple[str, int]:
     derived.save()              # after the text: what writing it computed (the power check) is kept too
     unanswered = [name for name, a in answers.items() if isinstance(a, str)]
     return text, EXIT_UNANSWERED if unanswered else 0
+
+
+def check_declared_start(args, system, spec, mode=None) -> None:
+    """The declared starting state put onto the constraints (numeric.starts), or the one-paragraph refusal."""
+    from ..numeric.starts import declared_start
+
+    try:
+        moved = guarded(args, declared_start, system, mode)
+    except RigidkinError as exc:
+        raise with_file(exc, spec) from None
+    if moved:                   # a warning: said on stderr, and the output is not kept for a repeat
+        warnings.warn("the declared starting state is not on the constraints; it is assembled onto them (Newton's "
+                      "method from the declared values): " + ", ".join(
+                          f"{nm} = {b:.10g} (declared {a:.10g})" for nm, (a, b) in moved.items()), RuntimeWarning,
+                      stacklevel=2)

@@ -10,6 +10,12 @@ for a sphere: a leaning wheel touches the ground below its centre only in the di
 gap is the height of the centre minus r sqrt(1 − (a·n)²).  Rolling without slip asks the material
 point of the disk at P to move with the surface along the two tangent directions (two
 non-integrable velocity constraints), and the normal row keeps P on the plane.
+
+Domain of validity: û·n = sqrt(1 − (a·n)²) > 0.  Its square root is resolved once, by its sign in the
+reference configuration (û·n = cos θ for a lean θ), so the formulas hold on that side of lying flat
+only; there û·n → 0, the disk's face meets the plane — a change of contact the model does not
+describe.  :meth:`DiskContact.domain` gives that condition: the simulator watches it and refuses a
+start outside it, and answers outside it are not given.
 """
 
 from __future__ import annotations
@@ -69,6 +75,23 @@ class DiskContact(Contact):
             u = in_plane / sp.sqrt(1 - an**2)             # |n − (a·n) a|² = 1 − (a·n)² for unit a, n
         cache[self.name] = u
         return u
+
+    def domain(self, kin) -> list[tuple[sp.Expr, str, str]]:
+        """(expr, what its zero is, why the model ends there): the conditions ``expr > 0`` within which the
+        contact's geometry is exact — here û·n > 0, the disk not flat."""
+        cache = kin.__dict__.setdefault("_disk_domains", {})
+        if self.name not in cache:
+            un = kin.simplify_expr(self.rim_direction(kin).dot(self.normal(kin)))
+            cache[self.name] = [(un, f"the disk of contact {self.name} comes to lie flat on the plane",
+                                 "its face meets the plane, a change of contact this model (the rim on the "
+                                 "plane) does not describe")]
+        return cache[self.name]
+
+    def validity(self, setup, react) -> list:
+        """The contact's conditions (friction within its cone) and its geometry's domain: the disk not past flat."""
+        return [*super().validity(setup, react),
+                *((expr, f"the disk of contact {self.name} not lying flat (its rim, not its face, on the plane)")
+                  for expr, _, _ in self.domain(setup.kin))]
 
     def location(self, kin) -> Vector:
         return kin.position(self.centre) - self.radius * self.rim_direction(kin)

@@ -97,7 +97,9 @@ class SimulationResult:
     #: why the run ended: "completed" (reached the end time), or why it stopped early: "mode-unavailable"
     #: (the model cannot represent the next mode), "no-consistent-mode" (the contact problem has no
     #: solution, Painlevé), "ambiguous" (several), "accumulation" (events pile up), "max-events",
-    #: "relation-mismatch" (a mode entered with another constant of integration)
+    #: "relation-mismatch" (a mode entered with another constant of integration), "outside-domain" (a contact
+    #: leaves the configurations its geometry describes: a disk lying flat), "constraint-drift" / "energy-drift"
+    #: (a constraint or the energy balance left its tolerance: the histories end there)
     stop_reason: str = "completed"
 
     @property
@@ -275,6 +277,8 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
     for part in res_parts:
         for k, v in part.items():
             residuals[k] = max(residuals.get(k, 0.0), float(np.max(np.abs(v))) if len(v) else 0.0)
+    res_hist = {k: np.concatenate([np.abs(part[k]) if k in part else np.zeros(len(tt))
+                                   for part, tt in zip(res_parts, ts)]) for k in residuals}
     T, U = np.concatenate(T_parts), np.concatenate(U_parts)
     W = Y[2 * n]
     E = T + U
@@ -289,15 +293,42 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
     conserved = bool(np.all(W == 0.0)) and all(s.model.conservative for s in segments)
     balance = "conserved" if conserved else "with the work of non-conservative loads and impulses"
     warns = list(notes or [])
-    if drift > energy_tol:
-        warns.append(f"the energy drift {drift:.3g} (relative, {balance}) exceeds {energy_tol:g}: the "
-                     "integration is not accurate enough (tighten rtol/atol) or the model does work the "
-                     "monitor does not see.")
     qscale = max(1.0, float(np.max(np.abs(Y[:n]))) if n else 1.0)
-    for k, v in residuals.items():
-        if v > residual_tol * qscale:
-            warns.append(f"the constraint '{k}' drifts by {v:.3g} while closed (tolerance {residual_tol:g}).")
-    return SimulationResult(system.name, system.title, layout, t, Y[:2 * n].T.copy(), np.concatenate(segs),
-                            reactions, {"T": T, "U": U, "E": E, "W": W}, residuals, list(events),
-                            list(segments), status, message, drift, balance, warns,
-                            {c.name: c.kind for c in system.coordinate_info.values()}, limits)
+    # a run that cannot keep its constraints or its energy balance stops where it first fails (exit 3)
+    failed = _first_failure(t, np.abs(E - E[0] - W) / scale, energy_tol, balance, res_hist, residual_tol * qscale)
+    stop_reason, seg_of = "completed", np.concatenate(segs)
+    if failed is not None:
+        j, stop_reason, what = failed
+        keep = slice(0, j + 1)
+        t, Y, seg_of = t[keep], Y[:, keep], seg_of[keep]
+        reactions = {k: v[keep] for k, v in reactions.items()}
+        limits = {k: v[keep] for k, v in limits.items()}
+        T, U, E, W = T[keep], U[keep], E[keep], W[keep]
+        events = [e for e in events if e.t <= t[-1]]
+        drift = float(np.max(np.abs(E - E[0] - W)) / scale)            # the monitors up to the stop
+        residuals = {k: float(np.max(v[keep])) for k, v in res_hist.items()}
+        status, message = "stopped", what
+    result = SimulationResult(system.name, system.title, layout, t, Y[:2 * n].T.copy(), seg_of,
+                              reactions, {"T": T, "U": U, "E": E, "W": W}, residuals, list(events),
+                              list(segments), status, message, drift, balance, warns,
+                              {c.name: c.kind for c in system.coordinate_info.values()}, limits)
+    result.stop_reason = stop_reason
+    return result
+
+
+def _first_failure(t, drift, energy_tol, balance, res_hist, res_tol):
+    """(sample, stop reason, message) where the energy balance or a constraint first leaves its tolerance."""
+    first = None
+    bad = np.flatnonzero(drift > energy_tol)
+    if len(bad):
+        j = int(bad[0])
+        first = (j, "energy-drift", f"the energy balance ({balance}) drifts by {drift[j]:.3g} (relative) at t = "
+                 f"{t[j]:.10g}, beyond the tolerance {energy_tol:g}: the integration is not accurate enough "
+                 "(tighten rtol/atol) or the model does work the monitor does not see; the simulation stops there")
+    for k, v in res_hist.items():
+        bad = np.flatnonzero(v > res_tol)
+        if len(bad) and (first is None or int(bad[0]) < first[0]):
+            j = int(bad[0])
+            first = (j, "constraint-drift", f"the constraint '{k}' is violated by {v[j]:.3g} at t = {t[j]:.10g} "
+                     f"(tolerance {res_tol:.3g}): the motion leaves the constraint; the simulation stops there")
+    return first

@@ -36,7 +36,7 @@ from .large.route import numeric_route, simulate_tree
 from .large.tree import NotATree
 from .result import Event, Segment, SimulationResult, build_result
 from .rhs import RHS, SimulationError, compile_functions
-from .state import StateLayout, initial_values, parameter_vector
+from .state import StateLayout, assembled_changes, initial_values, parameter_vector
 
 t = dynamicsymbols._t
 
@@ -103,8 +103,11 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
     coordinate; the dependent coordinates without a value follow from the constraints of the mode
     (their integrated relations and rate relations), the rest are zero.  A contact that the values
     put apart (gap > 0) or that they move apart (normal speed > 0) starts open; one they push into
-    its surface is an error.  A declared value that contradicts a closed constraint yields to it; a
-    given one is an error.
+    its surface is an error.  The coordinates are then put onto the bilateral position constraints by
+    Newton's method from the values given or declared, the dependent ones moving (a given value that moves
+    is a warning; a start that cannot be assembled is refused naming the constraint and its residual:
+    :func:`rigidkin.numeric.state.assemble`); a given rate that contradicts a closed constraint is an
+    error; a start outside a contact's domain of validity (a disk past lying flat) is refused.
     """
     hyb = hybrid_of(system)
     lay = hyb.layout
@@ -142,9 +145,9 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
             if rel_slots is None:
                 hyb.relation_functions(cand, integrated=True)       # ModeUnavailable: the model's reason
         for s, v in zip(rel_slots, rel_fn(t0, *y, *p) if rel_slots else ()):
-            if s not in given:
+            if s not in given and np.isfinite(float(v)):       # no real value: left to the assembly's refusal
                 y[s] = float(v)
-        y = hyb.close_loops(cand, t0, y, p, keep=set(explicit))
+        y = hyb.assemble(cand, t0, y, p, where)                 # Newton onto the bilateral constraints
         for s, v in zip(rate_slots, rate_fn(t0, *y, *p) if rate_slots else ()):
             if n + s not in given:
                 y[n + s] = float(v)
@@ -167,7 +170,7 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
         bad = []
         rel = dict(zip(rel_slots, map(float, rel_fn(t0, *y, *p)))) if rel_slots else {}
         for s, want in rel.items():
-            if abs(y[s] - want) > 1e-9 * max(1.0, abs(want)):
+            if np.isfinite(want) and abs(y[s] - want) > 1e-9 * max(1.0, abs(want)):
                 if s in explicit and hyb._depends_on(cand, lay.coordinates[s]):
                     bad.append(f"{lay.names[s]} = {y[s]:g} (the constraints give {want:.6g})")
                 elif s not in explicit:
@@ -193,8 +196,21 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
             proposal = None
         dec = decide(hyb, t0, y, p, proposal, every=_sliding(hyb, cand, t0, y, p))
         mode_, k = dec.mode, dec.regime
-        return hyb.project_rates(mode_, t0, y, p), mode_, k
+        y = hyb.project_rates(mode_, t0, hyb.assemble(mode_, t0, y, p, where), p)
+        _check_domain(hyb.model(mode_, k), t0, y, p, where)
+        return y, mode_, k
     raise InputError("no set of open and closed contacts fits the initial state.", where=system.name)
+
+
+def _check_domain(model, t_, y, p, where: str) -> None:
+    """Refuse a starting state outside a contact's domain of validity (a disk leaned past lying flat)."""
+    vals = model.watch_values(t_, np.concatenate([y, [0.0]]), p)
+    for w, v in zip(model.watches, vals):
+        if w.kind == "domain" and not v > 0:
+            raise InputError(f"the initial state lies outside the configurations the geometry of contact {w.name} "
+                             f"describes: {w.quantity} = {v:.6g}, and it holds only while {w.quantity} > 0.",
+                             where=where, hint="Start on the side that the model was derived for (a disk: "
+                                               "a lean below 90°, not past lying flat).")
 
 
 def _sliding(hyb, mode, t_, y, p) -> bool:
@@ -275,11 +291,16 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
                                      f"than its kinetic one µk = {mu_k:g}.", where="parameters",
                                      hint="Give µs ≥ µk (a single µ means both).")
     y_q, mode_, k = initial_conditions(system, initial_state, {**base, **dict(phases[0].params)}, mode, t0)
+    explicit, declared = initial_values(system, lay, initial_state)
+    assembled = assembled_changes(lay, {**declared, **explicit}, y_q)
     until_fns = [_phase_function(lay, ph) for ph in phases]
     y = np.concatenate([y_q, [0.0]])      # the last slot: work of non-conservative loads and impulses
     segments: list[Segment] = []
     events: list[Event] = []
-    notes: list[str] = []
+    notes: list[str] = [f"the starting value {nm} = {a:.10g} was given and the constraints need {b:.10g}: the start is "
+                        "assembled there (Newton's method from the value given)" for nm, (a, b) in assembled.items()
+                        if lay.names.index(nm) in explicit]
+    assembled = {nm: v for nm, v in assembled.items() if lay.names.index(nm) not in explicit}   # declared ones
     status, message, stop = "completed", f"reached t = {t1:g}", "completed"
     ph, ph_start = 0, t0
     t_now = t0
@@ -367,6 +388,14 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
                                 hyb.model(mode_, k).description, "; ".join(nts)))
             continue
         w = model.watches[watch_of[i]]
+        if w.kind == "domain":           # the contact geometry ends here (a disk lying flat): no model beyond
+            status, stop = "stopped", "outside-domain"
+            message = f"at t = {t_now:.10g} {w.label} ({w.quantity} = 0): {w.detail}."
+            seg = segments[-1]           # the equations are singular on the boundary itself: end just before it
+            segments[-1] = replace(seg, t1=t_now - 1e-6 * (t_now - seg.t0))
+            events.append(Event(f"{w.label}: the simulation stops", "stop", w.name, t_now, before, before,
+                                model.description, "", w.detail))
+            break
         try:
             mode_, k, y, ev = _transition(hyb, model, w, t_now, y, p, e_of, rest_speed)
             mode2, k2, note = confirm(hyb, hyb.model(mode_, k), t_now, y, p)     # every touching contact
@@ -389,7 +418,9 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
         progress(t_now, t1)
     result = build_result(system, lay, segments, events, status, message, n_points=n_points,
                           energy_tol=energy_tol, residual_tol=residual_tol, notes=notes)
-    result.stop_reason = stop
+    if result.stop_reason == "completed":      # else the monitors stopped it (constraint or energy drift)
+        result.stop_reason = stop
+    result.assembled = assembled          # declared coordinates moved onto the constraints: (declared, assembled)
     for wmsg in result.warnings:
         warnings.warn(wmsg, RuntimeWarning, stacklevel=2)
     return result

@@ -160,3 +160,86 @@ def initial_values(system, layout: StateLayout, given: Mapping | None = None) ->
         if c.rate is not None:
             declared[i + layout.n] = float(c.rate)
     return explicit, declared
+
+
+@dataclass(frozen=True)
+class PositionConstraints:
+    """The position-level constraints g(t, q, p) = 0 of a mode that a starting state must satisfy: the gaps of
+    its bilateral rows (pins, collars, bilateral contacts, loop closures), with their names and the slots of the
+    coordinates Newton's method may move (the dependent ones)."""
+
+    labels: tuple[str, ...]
+    function: object             # (t, q…, q̇…, p…) → the gaps, in the order of ``labels``
+    free: tuple[int, ...]        # coordinate slots that assembly may move
+
+    def residuals(self, t_, y, p, n: int) -> np.ndarray:
+        if not self.labels:
+            return np.zeros(0)
+        return np.asarray(self.function(t_, *np.asarray(y, dtype=float)[:2 * n], *p), dtype=float).ravel()
+
+
+def assembly_tolerance(y, n: int) -> float:
+    """How far from zero a position constraint may be at an assembled start (relative to the coordinates)."""
+    return 1e-9 * max(1.0, float(np.max(np.abs(np.asarray(y, dtype=float)[:n]))) if n else 1.0)
+
+
+def assemble(cons: PositionConstraints, layout: StateLayout, t_, y, p, where: str) -> np.ndarray:
+    """The starting state put onto the position constraints by Newton's method from the values given.
+
+    The coordinates in ``cons.free`` (the dependent ones: given, declared or rough) are corrected by a
+    Gauss–Newton iteration (scipy's least_squares, exact in the limit) until every gap is within
+    :func:`assembly_tolerance`; the independent coordinates stay as given.  A start that cannot be
+    assembled is refused (InputError) naming the constraint with the largest residual and its value.
+    """
+    n = layout.n
+    y = np.array(y, dtype=float)
+    r0 = cons.residuals(t_, y, p, n)
+    if not len(r0):
+        return y
+    tol = assembly_tolerance(y, n)
+    if np.all(np.isfinite(r0)) and np.max(np.abs(r0)) <= tol:
+        return y
+    free = list(cons.free)
+    best = y
+    if free and np.all(np.isfinite(r0)):
+        from scipy.optimize import least_squares  # here: the state module stays light
+
+        def resid(z):
+            yy = y.copy()
+            yy[free] = z
+            r = cons.residuals(t_, yy, p, n)
+            return np.where(np.isfinite(r), r, 1e6)
+
+        for method in ("lm", "trf"):
+            if method == "lm" and len(r0) < len(free):
+                continue
+            try:
+                out = least_squares(resid, y[free], method=method, xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                                    max_nfev=200 * (len(free) + 1))
+            except ValueError:
+                continue
+            cand = y.copy()
+            cand[free] = out.x
+            if np.max(np.abs(cons.residuals(t_, cand, p, n))) < np.max(np.abs(cons.residuals(t_, best, p, n))):
+                best = cand
+            if np.max(np.abs(cons.residuals(t_, best, p, n))) <= assembly_tolerance(best, n):
+                return best
+    r = cons.residuals(t_, best, p, n)
+    r = np.where(np.isfinite(r), r, np.inf)
+    i = int(np.argmax(np.abs(r)))
+    moved = ", ".join(layout.names[s] for s in free) or "none (every coordinate involved is independent)"
+    raise InputError(f"the starting state cannot be assembled onto the position constraints: {cons.labels[i]} "
+                     f"keeps a residual of {abs(r[i]):.4g} (it is {abs(r0[i]):.4g} at the values given) after "
+                     f"Newton's method from the values given, moving {moved}.", where=where,
+                     hint="Give starting values of the coordinates near a configuration the constraints allow "
+                          "(and check that the constraint can hold at all: a point held on a line it cannot "
+                          "reach has no configuration).")
+
+
+def assembled_changes(layout: StateLayout, given: Mapping, y) -> dict[str, tuple[float, float]]:
+    """The coordinates the assembly moved: name → (value given or declared, assembled value)."""
+    out = {}
+    for i, v in given.items():
+        if i < layout.n and abs(float(y[i]) - float(v)) > 1e-9 * max(1.0, abs(float(v))):
+            out[layout.names[i]] = (float(v), float(y[i]))
+    return out

@@ -35,12 +35,13 @@ def look_ahead(t_: float, y: np.ndarray, f: np.ndarray) -> tuple[float, np.ndarr
 class Watch:
     """A quantity of the state whose zero ends a regime, and what that zero means."""
 
-    kind: str            # "opens", "impact", "sticks", "slips", "reverses"
+    kind: str            # "opens", "impact", "sticks", "slips", "reverses", "domain" (the model's geometry ends)
     name: str            # the contact or load
     label: str           # e.g. "contact A opens"
     direction: int       # the sign of the crossing that counts (solve_ivp's convention)
     slip_sign: int = 0   # "slips": the sign σ of the slip that begins
     quantity: str = ""   # the watched quantity, as a person reads it
+    detail: str = ""     # "domain": why the model ends where the quantity reaches zero
 
 
 class _Only:
@@ -73,7 +74,8 @@ class ModeModel:
     residual_names: list
     friction_names: list
     conservative: bool
-    steady: frozenset = frozenset()   # watches that cannot change: a mode at rest, no explicit time
+    steady: frozenset = frozenset()   # watches that cannot change: a mode at rest, no explicit time; a reaction
+    #                                   identically zero (by symmetry)
 
     @property
     def regime(self):

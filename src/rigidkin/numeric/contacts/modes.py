@@ -32,7 +32,7 @@ from ...derive.mode import setup_mode
 from ...model.constraints import ROLLING, SMOOTH, Contact, Coulomb
 from ...model.inputs import input_symbols
 from ..rhs import RegimeFunctions, compile_functions
-from ..state import StateLayout
+from ..state import PositionConstraints, StateLayout, assemble
 from .mode_model import ModeModel, Watch
 from .settle import regime_at, settle
 from .slip3d import expand
@@ -120,6 +120,8 @@ class Hybrid:
             return len(watches) - 1
 
         for name, c in self.contacts.items():
+            for dom, what, why in (c.domain(kin) if hasattr(c, "domain") else ()):    # the geometry's validity
+                watch(Watch("domain", name, what, -1, quantity=show(dom), detail=why), dom)
             st = mode[name]
             if st == OPEN:
                 watch(Watch("impact", name, f"impact at {name}", -1, quantity=f"gap of {name}"),
@@ -183,8 +185,10 @@ class Hybrid:
                 mu = c.friction.static if mode[name] == STICK else c.friction.kinetic
                 fexprs.append(mu * R(c.N) if mode[name] != OPEN else sp.Integer(0))
         fns = RegimeFunctions(sol, k, lay, [P, *wexprs, *rexprs, T, U, *fexprs])
-        return ModeModel(self.system, mode, k, sol, lay, fns, watches, conditions, residual_names,
-                         friction_names, conservative, self._steady(sol, reg, wexprs))
+        model = ModeModel(self.system, mode, k, sol, lay, fns, watches, conditions, residual_names,
+                          friction_names, conservative, self._steady(sol, reg, wexprs))
+        model.steady = model.steady | _vanishing(model)       # identically zero reactions: no watch
+        return model
 
     def _steady(self, sol, reg, wexprs) -> frozenset:
         """In a mode at rest (no degree of freedom) the state does not change, so a watch that does not
@@ -243,45 +247,26 @@ class Hybrid:
             self._relation_fns[key] = (rel_slots, rel_fn, slots, rate_fn)
         return self._relation_fns[key]
 
-    def close_loops(self, mode: dict, t_, y, p, keep=(), tol: float = 1e-12) -> np.ndarray:
-        """Solve the mode's holonomic constraints with no closed form (a four-bar's loop closure) for its
-        dependent coordinates, by Newton's method from the given values (the independent ones and the
-        coordinates in ``keep`` stay as they are)."""
-        from scipy.optimize import root
-
-        key = ("loops", mode_key(mode))
+    def position_constraints(self, mode: dict) -> PositionConstraints:
+        """The bilateral position constraints of ``mode`` (pins, collars, bilateral contacts, loop closures) that a
+        starting state must satisfy, with the dependent coordinates assembly may move."""
+        key = ("positions", mode_key(mode))
         if key not in self._relation_fns:
             sol = self.solution(mode)
             red = sol.setup.reduction
             lay = self.layout
-            # bilateral constraints only (pins, collars): a unilateral contact's gap is an inequality
-            gaps = [r.gap for r in red.relating if r.gap is not None and not r.unilateral]
-            free = [q for q in sol.dependent if q not in sol.relations]
-            fn = compile_functions(lay.arguments(), [lay.to_plain(g) for g in gaps]) if gaps and free else None
-            self._relation_fns[key] = (fn, [lay.coordinates.index(q) for q in free])
-        fn, slots = self._relation_fns[key]
-        slots = [s_ for s_ in slots if s_ not in keep]
-        if fn is None or not slots:
-            return y
-        y = np.array(y, dtype=float)
+            # a unilateral contact's gap is an inequality: it opens or is refused (simulate.initial_conditions)
+            rows = [r for r in red.relating if r.gap is not None and r.gap != 0 and not r.unilateral]
+            labels = tuple(_row_name(r) for r in rows)
+            fn = compile_functions(lay.arguments(), [lay.to_plain(r.gap) for r in rows]) if rows else None
+            free = tuple(lay.coordinates.index(q) for q in red.dependent if q in lay.coordinates)
+            self._relation_fns[key] = PositionConstraints(labels, fn, free)
+        return self._relation_fns[key]
 
-        def resid(z):
-            yy = y.copy()
-            yy[slots] = z
-            return np.asarray(fn(t_, *yy[:2 * self.layout.n], *p), dtype=float)
-
-        if np.max(np.abs(resid(y[slots]))) <= tol:
-            return y
-        out = root(lambda z: resid(z)[:len(slots)] if len(resid(z)) >= len(slots) else
-                   np.resize(resid(z), len(slots)), y[slots], method="hybr", tol=1e-14)
-        z = out.x
-        if np.max(np.abs(resid(z))) > 1e-9:
-            out = root(resid, y[slots], method="lm", tol=1e-14)
-            z = out.x
-            if np.max(np.abs(resid(z))) > 1e-9:
-                return y          # cannot be assembled from here: the checks that follow say so
-        y[slots] = z
-        return y
+    def assemble(self, mode: dict, t_, y, p, where: str) -> np.ndarray:
+        """The state with its coordinates put onto the mode's bilateral position constraints by Newton's method
+        from the values given (:func:`rigidkin.numeric.state.assemble`), or InputError naming the constraint."""
+        return assemble(self.position_constraints(mode), self.layout, t_, y, p, where)
 
     def project_rates(self, mode: dict, t_, y, p) -> np.ndarray:
         """The state with the dependent rates set from the rate relations of ``mode``."""
@@ -342,3 +327,39 @@ class Hybrid:
         if key not in self._rate_fns:
             self._rate_fns[key] = compile_functions(list(self.layout.parameter_symbols), [sp.sympify(expr)])
         return float(self._rate_fns[key](*p)[0])
+
+
+def _row_name(row) -> str:
+    """A constraint row as a person names it: ``contact B``, ``pin O along Ex``."""
+    return row.label.replace(": normal velocity", "").replace(": velocity along", " along")
+
+
+
+def _vanishing(model, seed: int = 7) -> frozenset:
+    """Watches of a reaction that vanishes identically in the regime (by symmetry: a wall nothing pushes
+    against): its round-off would "reach zero" at once, so it is no event.  Decided as ``algebra.is_zero``
+    decides an identity, by evaluation at random states (three, parameters at their values or random)."""
+    idx = [i for i, w in enumerate(model.watches) if w.kind in ("opens", "slack")]
+    if not idx:
+        return frozenset()
+    lay = model.layout
+    rng = np.random.default_rng(seed)
+    info = model.system.parameter_info
+    zero = set(idx)
+    for _ in range(3):
+        y = np.concatenate([rng.uniform(-1.0, 1.0, 2 * lay.n), [0.0]])
+        p = np.array([info[nm].value if info[nm].value is not None else rng.uniform(0.5, 2.0)
+                      for nm in lay.parameters], dtype=float)
+        try:
+            with np.errstate(all="ignore"):
+                react = model.reactions(rng.uniform(0.0, 1.0), y, p)
+        except Exception:           # a singular random state: undecided, so every watch stays
+            return frozenset()
+        scale = 1.0 + max((abs(v) for v in react.values() if np.isfinite(v)), default=0.0)
+        for i in list(zero):
+            v = react.get(model.watches[i].quantity)
+            if v is None or not np.isfinite(v) or abs(v) > 1e-12 * scale:
+                zero.discard(i)
+        if not zero:
+            break
+    return frozenset(zero)

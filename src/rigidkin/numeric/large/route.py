@@ -98,6 +98,5 @@ def simulate_tree(system, model: ArticulatedModel, t_span: tuple[float, float], 
     seg = Segment(t0, float(sol.t[-1]), {}, 0, model.route, 0, sol.sol, _Monitor(model), p, rhs.calls)
     result = build_result(system, lay, [seg], [], "completed", f"reached t = {t1:g}", n_points=n_points,
                           energy_tol=energy_tol, residual_tol=residual_tol)
-    result.stop_reason = "completed"
     result.route = model.route
     return result

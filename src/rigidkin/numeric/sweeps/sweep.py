@@ -35,6 +35,7 @@ from .exprtree import NotEncodable, encode
 from .sweep_plan import axis, axis_length, check_runs, complete, declared_state, runs_grid  # noqa: F401  (public here)
 from .sweep_record import make
 from .sweep_result import SweepResult, status_text  # noqa: F401  (public through here)
+from .sweep_start import assemble_runs, start_gaps
 
 t = dynamicsymbols._t
 
@@ -120,7 +121,13 @@ def plan(system, vary: Mapping | None = None, params: Mapping | None = None, ini
     inputs, P, Y = runs_grid(vary, base_p, y_base, layout.parameters, layout.labels, given, grid, unknown)
     if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
         raise InputError("the sweep's values are not all finite numbers.", where="sweep")
-    complete(Y, P, relations(system, mode, layout), given, functools.partial(_vector_eval, layout.arguments()))
+    rel, symbolic = relations(system, mode, layout), functools.partial(_vector_eval, layout.arguments())
+    rough = Y.copy()
+    complete(Y, P, rel, given, symbolic)
+    unreal = ~np.isfinite(Y)             # a relation with no real value here: the assembly says why
+    Y[unreal] = rough[unreal]
+    if assemble_runs(system, mode, layout, Y, P):    # simulate's rule: Newton onto the constraints, or refused
+        complete(Y, P, ([], rel[1]), given, symbolic)
     return inputs, P, Y
 
 
@@ -280,8 +287,13 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
 def _record(system, mode, layout: StateLayout, k: Kernel, events) -> dict | None:
     """The numeric record of this sweep's model (see :mod:`rigidkin.numeric.sweeps.sweep_record`)."""
 
+    index = {a: i for i, a in enumerate(layout.arguments())}
+    try:                 # the gaps each start must close (a record answers only starts already assembled)
+        starts = [encode(g, index) for g in start_gaps(system, mode, layout)]
+    except NotEncodable:
+        return None
     return make(system, layout, relations(system, mode, layout), events, c_source(k) + INTEGRATOR_C,
-                _CDEF + INTEGRATOR_CDEF)
+                _CDEF + INTEGRATOR_CDEF, starts)
 
 
 def _merge(parts: dict, Y: np.ndarray, names: tuple) -> batch.BatchResult:

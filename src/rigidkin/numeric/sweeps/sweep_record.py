@@ -28,7 +28,7 @@ from . import exprtree
 from .sweep_plan import axis_length, check_runs, complete, declared_state, runs_grid
 from .sweep_result import SweepResult
 
-VERSION = 1
+VERSION = 2                # 2: the start gaps a record checks before it answers
 SUFFIX = ".rec"
 _PLAIN = re.compile(r"[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?")
 
@@ -39,8 +39,9 @@ def options_key(mode: dict, stop_at, record, backend: str) -> tuple:
             "c" if backend in ("auto", "c") else backend)
 
 
-def make(system, layout, rel: tuple[list, list], events, source: str, cdef: str) -> dict | None:
-    """The record of a sweep's model (None where a constraint could not be written as a tree)."""
+def make(system, layout, rel: tuple[list, list], events, source: str, cdef: str, starts=()) -> dict | None:
+    """The record of a sweep's model (None where a constraint could not be written as a tree); ``starts``: the
+    gaps (trees) that vanish at an assembled start."""
     if any(not isinstance(expr, list) for group in rel for _, expr in group):
         return None
 
@@ -53,6 +54,7 @@ def make(system, layout, rel: tuple[list, list], events, source: str, cdef: str)
     return {"version": VERSION, "system": system.name, "labels": list(layout.labels),
             "parameters": list(layout.parameters), "n": n, "base_p": base_p, "y_base": y_base,
             "coordinates": [[i, tree] for i, tree in rel[0]], "rates": [[i, tree] for i, tree in rel[1]],
+            "starts": list(starts),
             "counts": [len(system.coordinate_info), len(system.parameter_info), len(system.constraints)],
             "events": [[e.name, e.output, e.direction, bool(e.terminal)] for e in events],
             "source": source, "cdef": cdef}
@@ -67,6 +69,7 @@ def _valid(rec: dict) -> bool:
                 and len(rec["y_base"]) == 2 * n and isinstance(rec["source"], str) and isinstance(rec["cdef"], str)
                 and all(isinstance(i, int) and 0 <= i < 2 * n and exprtree.valid(tr, n_args)
                         for i, tr in rec["coordinates"] + rec["rates"])
+                and all(exprtree.valid(tr, n_args) for tr in rec["starts"])
                 and all(isinstance(nm, str) and isinstance(o, int) and d in (-1, 0, 1) and isinstance(term, bool)
                         for nm, o, d, term in rec["events"]) and len(rec["counts"]) == 3)
     except (KeyError, TypeError, ValueError):
@@ -118,6 +121,13 @@ def plan(rec: dict, vary: dict, params: dict, initial: dict):
         return None
     rel = ([(i, tr) for i, tr in rec["coordinates"]], [(i, tr) for i, tr in rec["rates"]])
     complete(Y, P, rel, given)
+    if not np.all(np.isfinite(Y)):
+        return None
+    cols = [np.zeros(len(Y)), *Y.T, *P.T]
+    tol = 1e-9 * np.maximum(1.0, np.max(np.abs(Y[:, :rec["n"]]), axis=1)) if rec["n"] else 1e-9
+    for tree in rec["starts"]:        # a start off its constraints: the full route assembles it or says why
+        if np.any(~(np.abs(exprtree.evaluate(tree, cols, len(Y))) <= tol)):
+            return None
     return inputs, P, Y
 
 
