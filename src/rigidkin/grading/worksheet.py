@@ -33,7 +33,7 @@ from .. import examples
 from ..base.errors import InputError
 from ..base.textsafe import is_identifier
 from ..io.expressions import MAX_LENGTH
-from ..io.locate import Locator
+from ..io.locate import Locator, resolve_problem
 from ..io.reading import _parse_toml
 
 MAX_BYTES = 200_000        # a worksheet is a page of steps
@@ -137,9 +137,14 @@ def _claim_text(value, loc, *path) -> str:
 
 
 def _problem_ref(problem: str, path: Path, where: str) -> str:
-
-    if problem in examples.names() and not problem.endswith(".toml"):
-        return problem
+    """A file beside the worksheet (or at an absolute path) first; a bundled example only when no such file
+    exists (a folder named like an example never hides it)."""
+    how, found = resolve_problem(problem, path.parent)
+    if how == "example":
+        toml = examples.HERE / f"{problem}.toml"
+        return str(toml) if toml.is_file() else problem
+    if found.is_file() and problem.endswith(".toml"):
+        return str(found)
     if not problem.endswith(".toml"):
         raise InputError(f"'{problem}' is neither a bundled example nor a problem file (.toml).", where=where,
                          hint=f"Bundled examples: {', '.join(examples.names())}.")

@@ -22,11 +22,14 @@ def load_system(problem: str):
     """
     from .problem import load_problem  # the schema and the expression language: pydantic, sympy
 
+    from .locate import resolve_problem
+
     path = Path(problem)
     if path.suffix == ".toml" and not path.exists() and path.stem in examples.names():
         raise RigidkinError(f"there is no file {problem}.", where=problem,
                             hint=f"The bundled example of that name is solved with 'rigidkin solve {path.stem}'.")
-    if path.suffix == ".toml" or path.exists():
+    how, _ = resolve_problem(problem)       # a file on disk first; a folder never hides an example
+    if how == "file" and (path.suffix == ".toml" or path.exists()):
         return load_problem(path)
     if problem in examples.names():
         toml = examples.HERE / f"{problem}.toml"
