@@ -146,7 +146,9 @@ def _items(st: Step) -> list[str]:
     return out
 
 
-def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
+def grade_fbd(ref: Reference, st: Step, carried: Carried, scope=None, rc=None) -> StepResult:
+    """A diagram compared in the regime the motion fixes (``scope``); one valid only in another regime is
+    wrong for one cause, the friction's direction."""
     bodies = ref.system.bodies
     if st.body is None and len(bodies) > 1:
         raise InputError("a free-body diagram names its body (body = \"NAME\") when the problem has several.",
@@ -177,18 +179,21 @@ def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
     res = StepResult(st.index, st.kind, INCORRECT)
     res.expected = "; ".join(f"{a[2]}: {_vec_text(ref, a[0], a[0])}" + ("" if a[1] is None else
                                                                        f" at {_where(ref, a[1])}") for a in engine)
-    best = None
-    for reg in ref.regimes():
-        fb, diffs = _compare_loads(ref, student, engine, body, reg)
-        if best is None or len(fb) < len(best[0]):
-            best = (fb, diffs)
-        if not fb:
-            break
+    allowed = scope.for_step() if scope is not None else ref.regimes()
+    every = {id(reg): _compare_loads(ref, student, engine, body, reg) for reg in ref.regimes()}
+    best = min((every[id(r)] for r in allowed), key=lambda fd: len(fd[0]))
     res.feedback, res.differences = best
+    holds = [r for r in ref.regimes() if not every[id(r)][0]]
     if not res.feedback:
         res.verdict = CORRECT
-    else:
-        carried.loads[body] = (st.index, [(s[0], s[1]) for s in student])
+        if scope is not None and len(holds) == 1 and len(ref.regimes()) > 1:
+            if rc is not None and scope is rc:
+                rc.holds_in(holds[0], st.index)
+            res.feedback = [scope.note()] if scope.note() else []
+        return res
+    if scope is not None and holds:
+        res.feedback, res.differences = [scope.wrong_regime(holds[0])], []
+    carried.loads[body] = (st.index, [(s[0], s[1]) for s in student])
     return res
 
 

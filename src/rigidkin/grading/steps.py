@@ -26,6 +26,7 @@ from .feedback import dimension_problem, expandable, term_diff
 from .impulse import grade_impulse
 from .kinds import grade_answer, grade_fbd, grade_kinematics
 from .mistakes import force_candidates, moment_candidates
+from .regimes import RegimeChoice, regime_choice
 from .verdicts import CORRECT, INCORRECT, UNREADABLE, Carried, GradeReport, StepResult
 from .worksheet import Step, Worksheet, load_worksheet
 
@@ -45,6 +46,7 @@ def grade(ws: Worksheet) -> GradeReport:
             raise InputError(f"the problem asks no question named '{st.question}'.", where=st.where,
                              hint=f"Questions of {ws.problem}: {known}.")
     carried = Carried()
+    rc = regime_choice(ref, ws)
     results = []
     for st in ws.steps:
         claim = st.claim if isinstance(st.claim, str) else "; ".join(st.claim)
@@ -52,13 +54,13 @@ def grade(ws: Worksheet) -> GradeReport:
             if st.kind == "kinematics":
                 res = grade_kinematics(ref, st, carried)
             elif st.kind == "fbd":
-                res = grade_fbd(ref, st, carried)
+                res = grade_fbd(ref, st, carried, rc.scoped(st.question, ref), rc)
             elif st.kind == "answer":
                 res = grade_answer(ref, st)
             elif st.law == "impulse":
                 res = grade_impulse(ref, st)
             else:
-                res = grade_equation(ref, st, carried)
+                res = grade_equation(ref, st, carried, rc)
         except Unreadable as exc:
             res = StepResult(st.index, st.kind, UNREADABLE, [str(exc)])
         res.claim = claim
@@ -110,7 +112,7 @@ def _make_candidates(ref: Reference, st: Step, variants: bool):
     return out
 
 
-def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
+def grade_equation(ref: Reference, st: Step, carried: Carried, rc: RegimeChoice | None = None) -> StepResult:
     lhs, rhs = parse_claim(ref, st)
     expr = lhs - rhs
     res = StepResult(st.index, st.kind, INCORRECT)
@@ -137,8 +139,10 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
             res.expected = _expected_eom(ref)
             return res
     dim = dimension_problem(ref, lhs, rhs)
-    regimes = ref.regimes()
-    for reg in regimes:
+    scope = (rc or RegimeChoice(ref.regimes())).scoped(st.question, ref)
+    regimes = scope.for_step()
+    holds = {}
+    for reg in ref.regimes():
         try:
             row = ref.row(expr, reg)
         except space.NotLinear:
@@ -148,14 +152,26 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
             res.feedback = ["it reduces to 0 = 0 once the constraints are used: true, but it says nothing about "
                             "the motion"]
             return res
-        if space.in_span(ref.basis(reg), row):
-            res.verdict = CORRECT
-            res.feedback = notes + ([f"a valid combination of the balance equations ({_regime_text(reg, regimes)})"]
-                                    if len(regimes) > 1 else [])
-            res.expected = _expected_eom(ref) if st.kind == "eom" else ""
-            if st.kind == "balance":
-                carried.balances.append((st.index, None, None))
-            return res
+        holds[id(reg)] = bool(space.in_span(ref.basis(reg), row))
+    good = [r for r in regimes if holds[id(r)]]
+    if good:
+        reg = good[0]
+        if len([r for r in ref.regimes() if holds[id(r)]]) == 1 and rc is not None and scope is rc:
+            rc.holds_in(reg, st.index)
+        res.verdict = CORRECT
+        res.feedback = notes + ([scope.note() or f"a valid combination of the balance equations "
+                                 f"({_regime_text(reg, ref.regimes())})"]
+                                if len(ref.regimes()) > 1 and len(good) == 1 and
+                                len([r for r in ref.regimes() if holds[id(r)]]) == 1 else [])
+        res.expected = _expected_eom(ref) if st.kind == "eom" else ""
+        if st.kind == "balance":
+            carried.balances.append((st.index, None, None))
+        return res
+    other = next((r for r in ref.regimes() if holds[id(r)]), None)
+    if other is not None:
+        res.feedback = notes + [scope.wrong_regime(other)]
+        res.expected = _expected_eom(ref, regimes[0]) if st.kind == "eom" else ""
+        return res
     reg = regimes[0]
     row = ref.row(expr, reg)
     fb = list(notes)
@@ -379,6 +395,6 @@ def _eom_forms(ref: Reference, reg, student):
     return out
 
 
-def _expected_eom(ref: Reference) -> str:
-    reg = ref.regimes()[0]
+def _expected_eom(ref: Reference, reg=None) -> str:
+    reg = reg or ref.regimes()[0]
     return "; ".join(f"{text(e)} = 0" for e in reg.eom)
