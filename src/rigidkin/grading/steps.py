@@ -20,11 +20,12 @@ from ..base.errors import InputError
 from ..base.printing import text
 from ..io.expressions import parse_vector
 from . import space
+from .answers import grade_answer
 from .claims import Unreadable, parse_claim, read
 from .engine import Candidate, Reference, reference
 from .feedback import dimension_problem, expandable, term_diff
 from .impulse import grade_impulse
-from .kinds import grade_answer, grade_fbd, grade_kinematics
+from .kinds import grade_fbd, grade_kinematics
 from .mistakes import force_candidates, moment_candidates
 from .regimes import RegimeChoice, regime_choice
 from .verdicts import CORRECT, INCORRECT, UNREADABLE, Carried, GradeReport, StepResult
