@@ -74,82 +74,104 @@ def quantities(ref: Reference, question: str) -> list[Quantity]:
     a = ref.answers().get(question)
     out: list[Quantity] = []
     if a is not None and not isinstance(a, Exception) and a.value is not None:
-        out = _quantities(ref, a)
+        out = answer_quantities(ref.system, a, ref.setup)
     ref._rows[key] = out
     return out
 
 
-def _coord(ref, q):
-    for c in ref.system.coordinate_info.values():
+def _coord(system, q):
+    for c in system.coordinate_info.values():
         if c.symbol == q:
             return c
     return None
 
 
-def _position(ref, q, v, asked=True) -> Quantity:
-    c = _coord(ref, q)
+def _position(system, q, v, asked=True) -> Quantity:
+    c = _coord(system, q)
     name = c.name if c else text(q)
     return Quantity(text(q), (name,), sp.sympify(v), "position", c.dimension if c else None,
                     c.sense if c else "", asked)
 
 
-def _rate(ref, d, v, asked) -> Quantity:
-    c = _coord(ref, d.expr)
+def _rate(system, d, v, asked) -> Quantity:
+    c = _coord(system, d.expr)
     name = c.name if c else text(d.expr)
     dim = (c.dimension / TIME) if c else None
     return Quantity(text(d), (f"dot({name})", f"{name}_dot", f"d{name}"), sp.sympify(v), "rate", dim,
                     f"the rate of {c.sense}" if c and c.sense else "", asked)
 
 
-def _quantities(ref: Reference, a) -> list[Quantity]:
+def answer_quantities(system, a, setup=None) -> list[Quantity]:
+    """Every quantity an Answer states, with its symbol, words, kind and dimension."""
     kind, v, det = a.question.kind, a.value, a.details or {}
     out = []
+
+    def dim(e):
+        return _dim(system, setup, e)
+
+    if v is None:
+        return out
     if kind == "event":
         for q, x in (det.get("configuration") or {}).items():
-            out.append(_position(ref, q, x))
+            out.append(_position(system, q, x))
         for d, x in (det.get("end_state") or {}).items():
             if isinstance(d, sp.Derivative):
-                out.append(_rate(ref, d, x, False))
+                out.append(_rate(system, d, x, False))
         if det.get("time") is not None:
             out.append(Quantity("t", ("t", "time"), sp.sympify(det["time"]), "time", TIME, "the time", False))
     elif kind == "extreme":
-        q = _coord_named(ref, a.question.fields.get("coordinate"))
-        out.append(_position(ref, q, v) if q is not None else Quantity("value", (), sp.sympify(v), "value"))
+        c = system.coordinate_info.get(str(a.question.fields.get("coordinate")))
+        out.append(_position(system, c.symbol, v) if c is not None else
+                   Quantity("value", (), sp.sympify(v), "value", dim(v)))
     elif kind == "equilibrium":
-        for e in v:
+        for k, e in enumerate(v):
+            tag = f" of equilibrium {k + 1}" if len(v) > 1 else ""
             for q, x in (e.configuration or {}).items():
-                out.append(_position(ref, q, x))
+                out.append(_position(system, q, x))
             for i, w in enumerate(e.natural_frequencies or ()):
                 out.append(Quantity(f"ω_n{i + 1}" if len(e.natural_frequencies) > 1 else "ω_n",
                                     tuple(_FREQ) + (f"omega_n{i + 1}",), sp.sympify(w), "frequency", ONE / TIME,
-                                    "the natural frequency", False))
-            out.append(Quantity("stability", tuple(_STAB), str(e.stability), "stability", None, "the stability",
+                                    "the natural frequency" + tag, False))
+            out.append(Quantity("stability", tuple(_STAB), str(e.stability), "stability", None, "the stability" + tag,
                                 False))
+    elif kind == "phases":
+        for ph in det.get("phases") or ():
+            if not ph.happens:
+                continue
+            if ph.duration is not None:
+                out.append(Quantity(f"Δt({ph.name})", (f"duration_{ph.name}", f"t_{ph.name}"), sp.sympify(ph.duration),
+                                    "time", TIME, f"the duration of the phase '{ph.name}'", True))
+                for d, x in ph.end_state.items():
+                    if isinstance(d, sp.Derivative):
+                        r = _rate(system, d, x, True)
+                        r.symbol, r.names = f"{r.symbol}({ph.name})", tuple(f"{n}_{ph.name}" for n in r.names)
+                        r.words = f"{r.words or r.symbol} at the end of the phase '{ph.name}'"
+                        out.append(r)
     elif isinstance(v, dict):
         for d, x in v.items():
             if isinstance(d, sp.Derivative):
-                out.append(_rate(ref, d, x, True))
+                out.append(_rate(system, d, x, True))
             elif isinstance(x, sp.Basic | int | float):
                 out.append(Quantity(text(d), (str(d),), sp.sympify(x), "value", None, "", True))
     elif kind == "reaction" and isinstance(v, sp.Basic):
         r = str(a.question.fields.get("reaction", "reaction"))
-        out.append(Quantity(r, (r,), v, "reaction", _dim(ref, v), "the reaction", True))
+        out.append(Quantity(r, (r,), v, "reaction", dim(v), "the reaction", True))
     elif isinstance(v, sp.Eq):
-        out.append(Quantity(text(v.lhs), (str(v.lhs),), v.rhs, "value", _dim(ref, v.rhs), "", True))
+        out.append(Quantity(text(v.lhs), (str(v.lhs),), v.rhs, "value", dim(v.rhs), "", True))
     elif isinstance(v, sp.Basic):
         head = a.text.split(" = ")[0] if " = " in a.text else a.question.name
-        out.append(Quantity(head, (head,), v, "value", _dim(ref, v), "", True))
+        out.append(Quantity(head, (head,), v, "value", dim(v), "", True))
+    elif kind == "integral":
+        for k, e in enumerate(v):
+            x = getattr(e, "value", None) if not isinstance(e, sp.Basic) else None
+            if isinstance(x, sp.Basic):
+                out.append(Quantity(f"integral {k + 1}", (f"integral{k + 1}",), x, "value", dim(x), "", True))
     return out
 
 
-def _coord_named(ref, name):
-    c = ref.system.coordinate_info.get(str(name)) if name is not None else None
-    return c.symbol if c is not None else None
-
-
-def _dim(ref, expr):
+def _dim(system, setup, expr):
     try:
-        return dimension_of(expr, symbol_dimensions(ref.system, ref.setup))
+        return dimension_of(expr, symbol_dimensions(system, setup))
     except (RigidkinError, TypeError, ValueError):
         return None
 
@@ -176,12 +198,12 @@ def grade_answer(ref: Reference, st: Step) -> StepResult:
     pool = chosen if chosen is not None else [q for q in qs if q.kind != "stability"]
     if chosen is None:
         asked = [q for q in pool if q.asked]
-        dim = unit_dim if unit_dim is not None else (None if bare else _dim(ref, value))
+        dim = unit_dim if unit_dim is not None else (None if bare else _dim(ref.system, ref.setup, value))
         fit = [q for q in pool if dim is not None and q.dimension is not None and q.dimension == dim]
         pool = [q for q in fit if q.asked] or fit or asked
     target = pool[0]
     # dimension: a unit or an expression of another kind of quantity is wrong whatever its number
-    got = unit_dim if unit_dim is not None else (None if bare else _dim(ref, value))
+    got = unit_dim if unit_dim is not None else (None if bare else _dim(ref.system, ref.setup, value))
     if got is not None and target.dimension is not None and got != target.dimension and \
             all(q.dimension != got for q in pool):
         what = ", ".join(f"{q.symbol}: {q.dimension}" for q in pool[:4])
@@ -250,7 +272,6 @@ def _same(ref, value, target, params, rtol) -> bool:
 
 
 def _cause(ref, value, pool, qs, params, rtol, bare, claim) -> str:
-    target = pool[0]
     v = _num(value, params)
     for q in pool:
         cv = _num(q.value, params)

@@ -12,6 +12,7 @@ from pathlib import Path
 from .. import examples
 from ..base.errors import RigidkinError
 from ..base.units import parse_quantity
+from .locate import resolve_problem
 
 
 def load_system(problem: str):
@@ -21,8 +22,6 @@ def load_system(problem: str):
     A bundled example with a problem file (``examples/ladder.toml``) is read from that file.
     """
     from .problem import load_problem  # the schema and the expression language: pydantic, sympy
-
-    from .locate import resolve_problem
 
     path = Path(problem)
     if path.suffix == ".toml" and not path.exists() and path.stem in examples.names():

@@ -10,6 +10,9 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from pathlib import Path
+
+from .. import examples
 
 _KEY_PART = re.compile(r"[A-Za-z0-9_-]+|\"(?:[^\"\\]|\\.)*\"|'[^']*'")
 _KEY = re.compile(r"^\s*((?:[A-Za-z0-9_-]+|\"(?:[^\"\\]|\\.)*\"|'[^']*')"
@@ -158,10 +161,6 @@ def resolve_problem(problem: str, folder=None) -> tuple[str, object]:
     a folder of that name (``collar-rod/`` holding worksheets) never hides the example.  A ``.toml``
     path that does not exist stays a file (its reader says it is missing).
     """
-    from pathlib import Path
-
-    from .. import examples
-
     p = Path(problem)
     if folder is not None and not p.is_absolute():
         p = Path(folder) / p
@@ -174,8 +173,6 @@ def resolve_problem(problem: str, folder=None) -> tuple[str, object]:
 
 def clashes(names, folder=".") -> dict:
     """Bundled names that a file or folder in ``folder`` shares, with what a command given the name reads."""
-    from pathlib import Path
-
     out = {}
     for name in names:
         p = Path(folder) / name
