@@ -283,8 +283,9 @@ TRACK_OK = [
 ]
 TRACK_BAD = [
     ({"kind": "kinematics", "claim": "a_C = (R - r)*ddot(theta)*et"}, "only the rates were differentiated"),
+    # follows from the a_C of the step before (its radial component left out): carried, one cause
     ({"kind": "balance", "law": "force", "direction": "er_in", "claim": "N - m*g*cos(theta) = 0"},
-     "wrong acceleration of the mass centre"),
+     "carried error: it follows correctly from your step 1"),
     ({"kind": "eom", "claim": "(R - r)*ddot(theta) + g*sin(theta) = 0"}, "rotational inertia missing"),
     ({"kind": "balance", "law": "energy", "claim": "m*(R - r)**2*dot(theta)**2/2 - m*g*(R - r)*cos(theta) = 0"},
      "rotational inertia missing"),

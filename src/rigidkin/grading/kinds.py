@@ -97,15 +97,24 @@ def grade_kinematics(ref: Reference, st: Step, carried: Carried) -> StepResult:
             if same_vector(ref, student, ref.setup.vector(v)):
                 res.feedback.append(why)
                 break
-    if same_vector(ref, student, -engine):
+    if not res.feedback and same_vector(ref, student, -engine):
         res.feedback.append("sign: the whole vector has the wrong sign")
-    for e, ename in _basis_of(ref, student):
+    one = bool(res.feedback)                   # one cause: the named mistake or the sign, else the components
+    axes = _basis_of(ref, student)
+    if what not in ("v", "a") and len(axes) == 2:          # a planar ω or α lies along the third axis
+        fr = next(f for f in ref.system.frames.values() if f.x == axes[0][0])
+        axes = axes + [(fr.z, fr.basis[2])]
+    for e, ename in axes:
         a, b = ref.scalar(student.dot(e)), ref.scalar(engine.dot(e))
         va, vb = ref.sampler.evaluate([space.to_plain(a), space.to_plain(b)]).T
         if not space.vanishes((va - vb)[:, None], np.abs(np.stack([va, vb], 1))):
             sa, sb = kin.simplify_expr(a), kin.simplify_expr(b)
-            res.feedback.append(f"component along {ename}: you wrote {text(sa)}, it is {text(sb)}")
+            if not one:
+                res.feedback.append(f"component along {ename}: you wrote {text(sa)}, it is {text(sb)}")
             res.differences.append((text(sa), text(sb)))
+    if len(res.feedback) > 1:
+        more = len(res.feedback) - 1
+        res.feedback = [res.feedback[0] + f" (and {more} more component{'s' if more > 1 else ''}: see the differences)"]
     if not res.feedback:
         res.feedback.append(f"{label} differs from the engine's")
     return res
@@ -187,6 +196,10 @@ def grade_fbd(ref: Reference, st: Step, carried: Carried, scope=None, rc=None) -
         return res
     if scope is not None and holds:
         res.feedback, res.differences = [scope.wrong_regime(holds[0])], []
+    elif len(res.feedback) > 1:                 # one cause; every difference stays listed
+        res.differences = res.differences + [(f, "") for f in res.feedback[1:]]
+        more = len(res.feedback) - 1
+        res.feedback = [res.feedback[0] + f" (and {more} more difference{'s' if more > 1 else ''})"]
     carried.loads[body] = (st.index, [(s[0], s[1]) for s in student])
     return res
 

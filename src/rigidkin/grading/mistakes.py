@@ -126,3 +126,13 @@ def force_candidates(ref: Reference, body, directions, variants: bool = True) ->
             out.append(Candidate(lab, ref.force_equation(body, e, accel=a), body.name, "force", None,
                                  f"wrong acceleration of the mass centre in m ā: {why}", right))
     return out
+
+
+def system_candidates(ref: Reference, bodies, directions) -> list[Candidate]:
+    """Euler's 1st law for the whole system along each direction: the sum of the bodies' equations (the
+    forces between the bodies cancel), so that a whole-system balance is compared with its own kind."""
+    out = []
+    for e, name in directions:
+        expr = sum((ref.force_equation(b, e) for b in bodies), 0)
+        out.append(Candidate(f"Euler's 1st law for the whole system along {name}", expr, None, "force"))
+    return out

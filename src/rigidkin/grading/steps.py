@@ -26,7 +26,7 @@ from .engine import Candidate, Reference, reference
 from .feedback import dimension_problem, expandable, term_diff
 from .impulse import grade_impulse
 from .kinds import grade_fbd, grade_kinematics
-from .mistakes import force_candidates, moment_candidates
+from .mistakes import force_candidates, moment_candidates, system_candidates
 from .regimes import RegimeChoice, regime_choice
 from .verdicts import CORRECT, INCORRECT, UNREADABLE, Carried, GradeReport, StepResult
 from .worksheet import Step, Worksheet, load_worksheet
@@ -94,6 +94,8 @@ def _make_candidates(ref: Reference, st: Step, variants: bool):
             (ref.directions() if st.law else ref.axes())
         for b in bodies:
             out += force_candidates(ref, b, dirs, variants)
+        if len(bodies) > 1:
+            out += system_candidates(ref, bodies, dirs)
     if "moment" in laws:
         axes = [(direction, st.direction)] if direction is not None else ref.axes(moment=True)
         for b in bodies:
@@ -175,22 +177,31 @@ def grade_equation(ref: Reference, st: Step, carried: Carried, rc: RegimeChoice 
         return res
     reg = regimes[0]
     row = ref.row(expr, reg)
+    # one cause, the most specific: carried from an earlier step, else a named mistake, else a dimension,
+    # else the term that differs (the rest of the differing terms are listed as differences)
     fb = list(notes)
-    if dim:
-        fb.append(dim)
-    named = _named_mistake(ref, st, row, reg)
-    if named:
-        fb.append(named)
+    diff, target, nearest = _best_diff(ref, st, expr, reg)
+    if diff is not None:
+        res.differences = [(text(u), "") for u in diff.extra] + [("", text(r)) for r in diff.missing] + \
+            [(text(u), text(-u)) for u in diff.signs] + [(text(u), text(r)) for u, r in diff.coefficients]
     via = _carried(ref, row, reg, carried)
     if via:
         res.carried_from = via
-        fb.append("carried error: it follows correctly from your step" + ("s " if len(via) > 1 else " ")
-                  + ", ".join(map(str, via)) + ", which " + ("are" if len(via) > 1 else "is") + " wrong")
-    diff, target, nearest = _best_diff(ref, st, expr, reg)
-    if diff is not None and not named:
-        fb += diff.describe()
-        res.differences = [(text(u), "") for u in diff.extra] + [("", text(r)) for r in diff.missing] + \
-            [(text(u), text(-u)) for u in diff.signs] + [(text(u), text(r)) for u, r in diff.coefficients]
+        many = len(via) > 1
+        fb.append("carried error: it follows correctly from your step" + ("s " if many else " ")
+                  + ", ".join(map(str, via)) + ", which " + ("are" if many else "is") + " wrong; otherwise it is "
+                  "right")
+    else:
+        named = _named_mistake(ref, st, row, reg)
+        causes = diff.describe() if diff is not None else []
+        if named:
+            fb.append(named)
+        elif dim:
+            fb.append(dim)
+        elif causes:
+            more = len(causes) - 1
+            fb.append(causes[0] + (f" (and {more} more differing term{'s' if more > 1 else ''}: see the "
+                                   "differences)" if more else ""))
     if len(fb) == len(notes):
         fb.append("it is not a valid combination of the balance equations")
     res.feedback = fb
