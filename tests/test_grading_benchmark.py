@@ -9,6 +9,7 @@ accuracy is printed by ``benchmarks/grading_accuracy.py`` (a figure, not asserte
 from __future__ import annotations
 
 import importlib.util
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -17,7 +18,9 @@ ROOT = Path(__file__).resolve().parent.parent
 def _bench():
     spec = importlib.util.spec_from_file_location("grading_accuracy", ROOT / "benchmarks" / "grading_accuracy.py")
     mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    sys.modules.setdefault("grading_accuracy", mod)      # a dataclass needs its module registered
+    spec.loader.exec_module(sys.modules["grading_accuracy"])
+    mod = sys.modules["grading_accuracy"]
     return mod
 
 
@@ -29,6 +32,7 @@ def test_benchmark_has_no_wrong_verdict():
     assert sum(r.expect == "incorrect" for r in rows) >= 60 and sum(r.expect == "correct" for r in rows) >= 60
     wrong = [(r.case, r.step.get("claim"), r.expect, r.verdict, r.feedback) for r in rows if not r.verdict_ok]
     assert not wrong, wrong
-    # one cause per wrong step
-    many = [(r.step.get("claim"), r.feedback) for r in rows if r.verdict == "incorrect" and len(r.feedback) != 1]
+    # one cause per wrong step (beside the note that a first integral was graded through its derivative)
+    many = [(r.step.get("claim"), r.feedback) for r in rows if r.verdict == "incorrect" and
+            len([f for f in r.feedback if not f.startswith("read as a first integral")]) != 1]
     assert not many, many

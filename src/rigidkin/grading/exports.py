@@ -23,7 +23,7 @@ def asked_text(ps: ProblemSet, k: KeyEntry) -> str:
     what = k.symbol or k.label
     if k.words:
         what += f" ({k.words})"
-    extra = k.label[k.label.index(" at the start"):] if " at the start" in k.label else ""
+    extra = k.at
     unit = f", in {k.unit}" if k.unit else ""
     return f"{ps.questions.get(k.question, k.question)}: give {what}{extra}{unit}."
 

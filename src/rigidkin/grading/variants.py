@@ -47,6 +47,7 @@ class KeyEntry:
     words: str = ""
     unit: str = ""
     kind: str = ""
+    at: str = ""         # where a function of the state is evaluated (" at the start (θ = 0.3)")
 
 
 @dataclass
@@ -218,7 +219,8 @@ def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
                 if num is None:
                     state_bound.append(label)
                     continue
-                where = f" at the start ({shown})"
+                where = (f" at {shown} along the motion of the question ({text(a.details['integral'])})"
+                         if (a.details or {}).get("integral") is not None else f" at the start ({shown})")
             tol = max(rtol * abs(num), (a.tolerance or 0.0), 1e-12)
             exact = base.get(label)
             if exact is not None and base_answers[q.name].exact:
@@ -228,7 +230,7 @@ def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
                                         f"variant's own solve but {check} from the exact answer {text(exact)}; the "
                                         "key is refused.", hint="Narrow the --vary ranges (a regime may change).")
             var.keys.append(KeyEntry(q.name, label + where, num, tol, text(exact) if exact is not None else "",
-                                     qty.symbol, qty.words, qty.unit, qty.kind))
+                                     qty.symbol, qty.words, qty.unit, qty.kind, where))
             got += 1
         if not got:
             why = (f"its answer ({', '.join(state_bound)}) is a function of the state, not a number, and the problem "
