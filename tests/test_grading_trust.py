@@ -179,3 +179,25 @@ def test_file_beside_the_worksheet_wins(tmp_path):
     (tmp_path / "ladder").write_text((examples.HERE / "ladder.toml").read_text(encoding="utf-8"), encoding="utf-8")
     assert resolve_problem("ladder", tmp_path) == ("file", tmp_path / "ladder")
     assert resolve_problem("ladder", tmp_path / "elsewhere") == ("example", "ladder")
+
+
+def test_template_says_what_each_question_asks(capsys):
+    import tomllib
+
+    assert main(["grade", "--template", "sphere-on-sphere"]) == 0
+    text = capsys.readouterr().out
+    data = tomllib.loads(text)
+    assert data["problem"] == "sphere-on-sphere"
+    answers = [s for s in data["step"] if s["kind"] == "answer"]
+    assert answers and all(s["question"] == "leaves_sphere" for s in answers)
+    assert "asks φ (angle of the line of centres OC from the upward vertical, clockwise), in rad" in text
+    assert main(["grade"]) == 2
+
+
+def test_report_says_what_is_asked(tmp_path):
+    from rigidkin.grading.report import as_data, as_html
+
+    rep = graded("sphere-on-sphere", [{"kind": "answer", "question": "leaves_sphere", "claim": "acos(10/17)"}],
+                 tmp_path)
+    assert "φ (angle of the line of centres" in as_data(rep)["steps"][0]["asks"]
+    assert "The question asks: " in as_html(rep)

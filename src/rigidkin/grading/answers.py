@@ -35,8 +35,8 @@ from .worksheet import Step
 t = dynamicsymbols._t
 ANSWER_RTOL = 5e-3
 _NUM_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z°/^*0-9. ]*?)\s*$")
-_FREQ = {"frequency", "omega_n", "wn", "natural_frequency", "omega", "f_n"}
-_STAB = {"stability", "stable"}
+_FREQ = ("omega_n", "frequency", "natural_frequency", "wn")
+_STAB = ("stability", "stable")
 
 
 @dataclass
@@ -185,6 +185,7 @@ def grade_answer(ref: Reference, st: Step) -> StepResult:
         return res
     res.expected = a.text
     qs = quantities(ref, st.question)
+    res.asks = "; ".join(f"{q.describe()}" + (f", in {q.unit}" if q.unit else "") for q in qs if q.asked)
     if not qs:
         res.feedback = [f"the answer to '{st.question}' is not a value that can be compared ({a.text})"]
         return res
