@@ -89,14 +89,20 @@ def regime_choice(ref, ws) -> RegimeChoice:
         rc.fixed = _by_condition(ref, ws.motion, ws.motion_where)
         rc.why = f"the stated motion {ws.motion}"
         return rc
+    found = []                        # every motion the problem states or a question asks
     got = _by_start(ref, {})
     if got is not None and _declares_start(ref):
-        rc.fixed, rc.why = got, "the problem's start (" + _start_text(ref) + ")"
-        return rc
+        found.append((got, "the problem's start (" + _start_text(ref) + ")"))
+    for q in ref.spec_questions():
+        reg = regime_of_question(ref, q.name)
+        if reg is not None:
+            found.append((reg, f"the start of the question '{q.name}'"))
     phase = _by_phases(ref)
     if phase is not None:
-        rc.fixed, rc.why = phase
-    return rc
+        found.append(phase)
+    if found and len({id(r) for r, _ in found}) == 1:
+        rc.fixed, rc.why = found[0]
+    return rc                         # motions that disagree: each step by its question, else the student's
 
 
 def _by_phases(ref):
@@ -125,7 +131,7 @@ def regime_of_question(ref, question: str | None):
     if not question or len(ref.regimes()) < 2:
         return None
     q = next((q for q in ref.spec_questions() if q.name == question), None)
-    start = dict((q.fields.get("start") or {}) if q is not None else {})
+    start = dict((q.fields.get("start") or q.fields.get("at") or {}) if q is not None else {})
     return _by_start(ref, start) if start else None
 
 
@@ -144,7 +150,7 @@ def _start_text(ref) -> str:
     parts = []
     for c in ref.system.coordinate_info.values():
         if c.rate is not None:
-            parts.append(f"{c.name}' = {c.rate:g}")
+            parts.append(f"dot({c.name}) = {c.rate:g}")
     moving = [p for p in parts if not p.endswith("= 0")]
     return "released from rest: the slip that starts" if parts and not moving else "its initial rates " + \
         ", ".join(parts)
