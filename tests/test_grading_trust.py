@@ -67,6 +67,8 @@ def test_open_regime_is_the_students_choice_carried(slip_card):
 def test_motion_that_selects_no_regime_is_refused(slip_card):
     with pytest.raises(InputError, match="does not select one sliding regime"):
         graded("slip.toml", DOWN[:1], slip_card, motion="dot(x) > 0")
+    with pytest.raises(InputError, match="the motion cannot be read"):
+        graded("slip.toml", DOWN[:1], slip_card, motion="dot(x) >> 0")
 
 
 def test_sphere_event_judged_against_the_quantity_asked(tmp_path):
@@ -166,6 +168,9 @@ def test_folder_named_like_an_example_does_not_hide_it(tmp_path, capsys):
     os.chdir(tmp_path)
     try:
         assert main(["grade", "collar-rod/ws.toml"]) == 0
+        from rigidkin.io.load import load_system
+
+        assert load_system("collar-rod")[0].title == "Collar on a track with a pendulum rod"   # solve collar-rod
         assert main(["list"]) == 0
         assert "a folder 'collar-rod' is here" in capsys.readouterr().out
     finally:

@@ -50,6 +50,7 @@ class Quantity:
     dimension: object = None
     words: str = ""
     asked: bool = True          # part of what the question asks when a step names no quantity
+    coordinate: object = None   # the coordinate q(t) of a position
 
     def describe(self) -> str:
         return f"{self.symbol} ({self.words})" if self.words else self.symbol
@@ -90,7 +91,7 @@ def _position(system, q, v, asked=True) -> Quantity:
     c = _coord(system, q)
     name = c.name if c else text(q)
     return Quantity(text(q), (name,), sp.sympify(v), "position", c.dimension if c else None,
-                    c.sense if c else "", asked)
+                    c.sense if c else "", asked, q)
 
 
 def _rate(system, d, v, asked) -> Quantity:
@@ -185,7 +186,8 @@ def grade_answer(ref: Reference, st: Step) -> StepResult:
         return res
     res.expected = a.text
     qs = quantities(ref, st.question)
-    res.asks = "; ".join(f"{q.describe()}" + (f", in {q.unit}" if q.unit else "") for q in qs if q.asked)
+    res.asks = "; ".join(f"{q.describe()}" + (f", in {q.unit}" if q.unit else "") for q in qs
+                         if q.asked and not held(ref, q))
     if not qs:
         res.feedback = [f"the answer to '{st.question}' is not a value that can be compared ({a.text})"]
         return res
@@ -198,10 +200,11 @@ def grade_answer(ref: Reference, st: Step) -> StepResult:
     rtol = st.tolerance or ANSWER_RTOL
     pool = chosen if chosen is not None else [q for q in qs if q.kind != "stability"]
     if chosen is None:
-        asked = [q for q in pool if q.asked]
+        # a coordinate the mode holds fixed (ρ = R + r while in contact) says nothing about where: not asked
+        asked = [q for q in pool if q.asked and not held(ref, q)] or [q for q in pool if q.asked]
         dim = unit_dim if unit_dim is not None else (None if bare else _dim(ref.system, ref.setup, value))
         fit = [q for q in pool if dim is not None and q.dimension is not None and q.dimension == dim]
-        pool = [q for q in fit if q.asked] or fit or asked
+        pool = [q for q in fit if q in asked] or fit or asked
     target = pool[0]
     # dimension: a unit or an expression of another kind of quantity is wrong whatever its number
     got = unit_dim if unit_dim is not None else (None if bare else _dim(ref.system, ref.setup, value))
@@ -221,6 +224,17 @@ def grade_answer(ref: Reference, st: Step) -> StepResult:
     res.feedback = [_cause(ref, value, pool, qs, params, rtol, bare, claim_text)]
     res.differences.append((claim_text.strip(), _shown(target, params)))
     return res
+
+
+def held(ref, q: Quantity) -> bool:
+    """A position whose coordinate is constant in the mode (fixed by a constraint)."""
+    if q.kind != "position" or q.coordinate is None:
+        return False
+    try:
+        e = ref.scalar(q.coordinate)
+    except (RigidkinError, TypeError, ValueError):
+        return False
+    return not any(f.has(t) for f in sp.sympify(e).atoms(sp.Function)) and not e.has(t)
 
 
 def _split_name(st: Step) -> tuple[str, str | None]:

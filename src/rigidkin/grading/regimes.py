@@ -16,7 +16,7 @@ from ..base import algebra
 from ..base.errors import InputError, RigidkinError
 from ..base.printing import text
 from ..io.expressions import parse_condition
-from .claims import read
+from .claims import Unreadable, read
 
 CAUSE = "friction drawn along the motion"
 
@@ -158,7 +158,11 @@ def _start_text(ref) -> str:
 
 def _by_condition(ref, motion: str, where: str):
     """The regime a condition on the rates selects (``dot(x) - r*dot(phi) > 0``)."""
-    rel = read("motion", parse_condition, motion, ref.scope, where)
+    try:
+        rel = read("motion", parse_condition, motion, ref.scope, where)
+    except Unreadable as exc:                  # the worksheet's own field: bad input, not a step's verdict
+        raise InputError(f"the motion cannot be read ({exc}).", where=where,
+                         hint="Write a condition on a slip speed, e.g. motion = \"dot(x) - r*dot(phi) > 0\".") from None
     q = ref.setup.scalar(rel.lhs - rel.rhs)
     sign = 1 if rel.rel_op in (">", ">=") else -1
     for r in ref.regimes():

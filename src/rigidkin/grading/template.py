@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 
 from ..io.locate import resolve_problem
-from .answers import quantities
+from .answers import held, quantities
 from .engine import reference
 
 _METHOD = (("kinematics", "the velocity or acceleration of a point, or ω, α of a body: 'a_G = ...'"),
@@ -24,7 +24,7 @@ def asked_lines(ref, question: str) -> list[str]:
     out = []
     for q in qs:
         unit = f", in {q.unit}" if q.unit else ""
-        verb = "asks" if q.asked else "also states"
+        verb = "asks" if q.asked and not held(ref, q) else "also states"
         out.append(f"{verb} {q.describe()}{unit}; quantity = {json.dumps(q.names[0] if q.names else q.symbol)}")
     return out
 
