@@ -93,6 +93,9 @@ def moment_candidates(ref: Reference, body, points, axes) -> list[Candidate]:
                 why = (f"wrong inertia: Ī (about the mass centre) was used for moments about {P.name}; the "
                        f"parallel-axis term m·d² is missing (I_{P.name} = Ī + m d²)")
                 out.append(Candidate(lab, _bare(ref, body, P, axis), body.name, "moment", P.name, why, right))
+                # Ī about P with the inertial-moment term written with a_P (r_PG × m a_P): the m d² α is lost
+                out.append(Candidate(lab, ref.moment_equation(body, P, axis, accel=kin.acceleration(P)), body.name,
+                                     "moment", P.name, why, right))
             else:
                 for Q in ref.body_points(body) + ref.contact_spots(body):
                     if Q is G or kin.is_zero_vector(kin.position(Q) - kin.position(G)):

@@ -192,8 +192,9 @@ def grade_equation(ref: Reference, st: Step, carried: Carried, rc: RegimeChoice 
                   + ", ".join(map(str, via)) + ", which " + ("are" if many else "is") + " wrong; otherwise it is "
                   "right")
     else:
-        named = _named_mistake(ref, st, row, reg)
         causes = diff.describe() if diff is not None else []
+        one_sign = diff is not None and len(diff.signs) == 1 and len(causes) == 1
+        named = None if one_sign else _named_mistake(ref, st, row, reg)   # one sign flipped: that is the cause
         if named:
             fb.append(named)
         elif dim:
