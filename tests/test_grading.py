@@ -92,7 +92,7 @@ LADDER_BAD = [
      "the inertia term m ā is missing"),
     ({"kind": "eom", "claim": "2*l*ddot(theta) = -3*g*sin(theta)"}, "sign: the term 3·g·sin(θ)"),
     ({"kind": "eom", "claim": "N_A = 0"}, "free of the unknown reactions"),
-    ({"kind": "answer", "question": "leaves_wall", "claim": "acos(1/3)"}, "the answer is acos(2/3)"),
+    ({"kind": "answer", "question": "leaves_wall", "claim": "acos(1/3)"}, "θ = acos(2/3)"),
     ({"kind": "answer", "question": "leaves_wall", "claim": "-acos(2/3)"}, "sign"),
     ({"kind": "balance", "law": "energy", "question": "leaves_wall",          # released from rest upright
       "claim": "m*l**2/6*dot(theta)**2 + m*g*l/2*cos(theta) = 0"}, "constant: the integral does not hold"),
@@ -262,7 +262,7 @@ ROD_BAD = [
     ({"kind": "eom", "claim": "m*l**2/3*ddot(theta) + K*theta = 0"},
      "moment of inertia about B was used for moments about the mass centre O"),
     ({"kind": "fbd", "claim": "-m*g*Ey at O; R_Ox*Ex + R_Oy*Ey at O"}, "missing from the diagram: torsional spring"),
-    ({"kind": "answer", "question": "after_blow", "claim": "3*F_hat/(2*m*l)"}, "the answer is 6·F̂/(l·m)"),
+    ({"kind": "answer", "question": "after_blow", "claim": "3*F_hat/(2*m*l)"}, "= 6·F̂/(l·m)"),
     ({"kind": "eom", "claim": "m*l**2/12*ddot(theta) - K*theta = 0"}, "sign: the term -K·θ"),
     ({"kind": "balance", "law": "impulse", "claim": "F_hat*l/2 = m*l**2/3*dot(theta)"},
      "it does not hold just after the blow, where θ̇ = 6·F̂/(l·m)"),
@@ -287,12 +287,13 @@ TRACK_OK = [
 ]
 TRACK_BAD = [
     ({"kind": "kinematics", "claim": "a_C = (R - r)*ddot(theta)*et"}, "only the rates were differentiated"),
+    # follows from the a_C of the step before (its radial component left out): carried, one cause
     ({"kind": "balance", "law": "force", "direction": "er_in", "claim": "N - m*g*cos(theta) = 0"},
-     "wrong acceleration of the mass centre"),
+     "carried error: it follows correctly from your step 1"),
     ({"kind": "eom", "claim": "(R - r)*ddot(theta) + g*sin(theta) = 0"}, "rotational inertia missing"),
     ({"kind": "balance", "law": "energy", "claim": "m*(R - r)**2*dot(theta)**2/2 - m*g*(R - r)*cos(theta) = 0"},
      "rotational inertia missing"),
-    ({"kind": "answer", "question": "speed_to_loop", "claim": "5*g*(R - r)"}, "the answer is 11·g·(R - r)/3"),
+    ({"kind": "answer", "question": "speed_to_loop", "claim": "5*g*(R - r)"}, "11·g·(R - r)/3"),
 ]
 
 

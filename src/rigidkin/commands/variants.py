@@ -2,8 +2,11 @@
 
 Each variant has new parameter values (three significant figures, reproducible from the seed) and an
 answer key (numbers with tolerances) from solving the variant itself, checked against the problem's
-exact answer where there is one.  ``-o set.xml`` writes Moodle XML (numerical questions);
-``--format json`` prints the key as data.
+exact answer where there is one.  ``-o set.xml`` writes Moodle XML (numerical questions),
+``--prairielearn DIR`` a PrairieLearn question folder per variant;
+``--format json`` prints the key as data.  Every question of the problem is kept: one that gives no
+number (a function of the state with no start to evaluate it at) is named with why, and the exit status
+is then 1 (0: every question has its keys; 2: bad input).
 """
 
 from __future__ import annotations
@@ -29,6 +32,8 @@ def register(sub) -> None:
     p.add_argument("--tolerance", type=float, default=0.01, help="relative tolerance of the keys (default 0.01)")
     p.add_argument("--format", default="text", choices=("text", "json", "moodle"), help="what to print")
     p.add_argument("-o", "--output", default=None, metavar="FILE.xml", help="write the Moodle XML to FILE.xml")
+    p.add_argument("--prairielearn", default=None, metavar="FOLDER",
+                   help="write PrairieLearn questions into FOLDER (a question folder per variant)")
     add_timeout(p)
     p.set_defaults(func=run)
 
@@ -36,7 +41,8 @@ def register(sub) -> None:
 def run(args) -> int:
     import math
 
-    from ..grading.variants import as_data, as_moodle, as_text, make_set, parse_vary
+    from ..grading.exports import as_moodle, as_prairielearn
+    from ..grading.variants import as_data, as_text, left_out, make_set, parse_vary
 
     if not (math.isfinite(args.tolerance) and 0 < args.tolerance < 1):
         raise InputError("--tolerance is a relative tolerance between 0 and 1.", where="--tolerance")
@@ -48,10 +54,12 @@ def run(args) -> int:
     if args.output:
         with writing(args.output, "the Moodle XML", suffixes=(".xml",)) as fh:
             fh.write(as_moodle(ps))
+    if args.prairielearn:
+        as_prairielearn(ps, args.prairielearn)
     if args.format == "json":
         print(json_safe(json.dumps(as_data(ps), indent=2, ensure_ascii=False)))
     elif args.format == "moodle":
         print(as_moodle(ps), end="")
     else:
         print(terminal_safe(as_text(ps)))
-    return 0
+    return 1 if left_out(ps) else 0

@@ -35,8 +35,11 @@ class TermDiff:
 
     @property
     def score(self) -> float:
+        """Matched terms first; on a tie the student's own scale (±1: the terms written as the law gives them,
+        so that a missing ½ on Ī is named on the inertia term and a missing 2 on 2T on the load)."""
+        unit = 0.2 if self.scale in (1, -1) else 0.0
         return (self.matched * 2 + 0.1 * self.accel_matched + len(self.signs) + len(self.coefficients)
-                - len(self.extra) - len(self.missing))
+                - len(self.extra) - len(self.missing) + unit)
 
     def describe(self) -> list[str]:
         out = []

@@ -60,12 +60,10 @@ def grade_impulse(ref: Reference, st: Step) -> StepResult:
     if space.vanishes(vals[:, :1], np.abs(vals)):
         res.verdict = CORRECT
         return res
-    dim = dimension_problem(ref, lhs, rhs)
-    if dim:
-        res.feedback.append(dim)
+    dim = dimension_problem(ref, lhs, rhs)      # one cause: the dimension, else the values it misses
     shown = ", ".join(f"{text(k)} = {text(v)}" for k, v in rates.items())
-    res.feedback.append(f"it does not hold just after the blow, where {shown}"
-                        + (", " + ", ".join(f"{n} = {text(v)}" for n, v in a.details["reaction_impulses"].items())
-                           if hats else ""))
+    res.feedback.append(dim or (f"it does not hold just after the blow, where {shown}"
+                                + (", " + ", ".join(f"{n} = {text(v)}" for n, v in
+                                                    a.details["reaction_impulses"].items()) if hats else "")))
     res.expected = a.text
     return res

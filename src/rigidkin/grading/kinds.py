@@ -9,26 +9,20 @@
   is a couple), ``body`` naming the body (optional with one body).  Each load is matched with the
   engine's diagram: same vector, and a point on the same line of action; the rest is named (missing,
   extra, wrong sign, wrong point).
-* ``answer``: ``question = "NAME"``, ``claim`` a value (an expression in the parameters, a number, or a
-  number with a unit, ``"48.19 deg"``), compared with the engine's answer (relative tolerance
-  ``tolerance``, default 0.5 % for numbers).
+* ``answer``: in :mod:`rigidkin.grading.answers`.
 """
 
 from __future__ import annotations
 
-import math
 import re
 
 import numpy as np
-import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
-from ..analysis.answers import numeric_values_from
 from ..base.errors import InputError
 from ..base.printing import text
 from ..derive.laws.newton_euler import body_loads
-from ..io.expressions import parse_scalar, parse_vector
-from ..io.load import value
+from ..io.expressions import parse_vector
 from . import space
 from .claims import Unreadable, read
 from .engine import Reference
@@ -103,15 +97,24 @@ def grade_kinematics(ref: Reference, st: Step, carried: Carried) -> StepResult:
             if same_vector(ref, student, ref.setup.vector(v)):
                 res.feedback.append(why)
                 break
-    if same_vector(ref, student, -engine):
+    if not res.feedback and same_vector(ref, student, -engine):
         res.feedback.append("sign: the whole vector has the wrong sign")
-    for e, ename in _basis_of(ref, student):
+    one = bool(res.feedback)                   # one cause: the named mistake or the sign, else the components
+    axes = _basis_of(ref, student)
+    if what not in ("v", "a") and len(axes) == 2:          # a planar ω or α lies along the third axis
+        fr = next(f for f in ref.system.frames.values() if f.x == axes[0][0])
+        axes = axes + [(fr.z, fr.basis[2])]
+    for e, ename in axes:
         a, b = ref.scalar(student.dot(e)), ref.scalar(engine.dot(e))
         va, vb = ref.sampler.evaluate([space.to_plain(a), space.to_plain(b)]).T
         if not space.vanishes((va - vb)[:, None], np.abs(np.stack([va, vb], 1))):
             sa, sb = kin.simplify_expr(a), kin.simplify_expr(b)
-            res.feedback.append(f"component along {ename}: you wrote {text(sa)}, it is {text(sb)}")
+            if not one:
+                res.feedback.append(f"component along {ename}: you wrote {text(sa)}, it is {text(sb)}")
             res.differences.append((text(sa), text(sb)))
+    if len(res.feedback) > 1:
+        more = len(res.feedback) - 1
+        res.feedback = [res.feedback[0] + f" (and {more} more component{'s' if more > 1 else ''}: see the differences)"]
     if not res.feedback:
         res.feedback.append(f"{label} differs from the engine's")
     return res
@@ -146,7 +149,9 @@ def _items(st: Step) -> list[str]:
     return out
 
 
-def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
+def grade_fbd(ref: Reference, st: Step, carried: Carried, scope=None, rc=None) -> StepResult:
+    """A diagram compared in the regime the motion fixes (``scope``); one valid only in another regime is
+    wrong for one cause, the friction's direction."""
     bodies = ref.system.bodies
     if st.body is None and len(bodies) > 1:
         raise InputError("a free-body diagram names its body (body = \"NAME\") when the problem has several.",
@@ -177,18 +182,25 @@ def grade_fbd(ref: Reference, st: Step, carried: Carried) -> StepResult:
     res = StepResult(st.index, st.kind, INCORRECT)
     res.expected = "; ".join(f"{a[2]}: {_vec_text(ref, a[0], a[0])}" + ("" if a[1] is None else
                                                                        f" at {_where(ref, a[1])}") for a in engine)
-    best = None
-    for reg in ref.regimes():
-        fb, diffs = _compare_loads(ref, student, engine, body, reg)
-        if best is None or len(fb) < len(best[0]):
-            best = (fb, diffs)
-        if not fb:
-            break
+    allowed = scope.for_step() if scope is not None else ref.regimes()
+    every = {id(reg): _compare_loads(ref, student, engine, body, reg) for reg in ref.regimes()}
+    best = min((every[id(r)] for r in allowed), key=lambda fd: len(fd[0]))
     res.feedback, res.differences = best
+    holds = [r for r in ref.regimes() if not every[id(r)][0]]
     if not res.feedback:
         res.verdict = CORRECT
-    else:
-        carried.loads[body] = (st.index, [(s[0], s[1]) for s in student])
+        if scope is not None and len(holds) == 1 and len(ref.regimes()) > 1:
+            if rc is not None and scope is rc:
+                rc.holds_in(holds[0], st.index)
+            res.feedback = [scope.note()] if scope.note() else []
+        return res
+    if scope is not None and holds:
+        res.feedback, res.differences = [scope.wrong_regime(holds[0])], []
+    elif len(res.feedback) > 1:                 # one cause; every difference stays listed
+        res.differences = res.differences + [(f, "") for f in res.feedback[1:]]
+        more = len(res.feedback) - 1
+        res.feedback = [res.feedback[0] + f" (and {more} more difference{'s' if more > 1 else ''})"]
+    carried.loads[body] = (st.index, [(s[0], s[1]) for s in student])
     return res
 
 
@@ -243,81 +255,3 @@ def _where(ref: Reference, loc: Vector) -> str:
         if same_vector(ref, ref.kin.position(p), loc):
             return p.name
     return text(ref.kin.simplify_vector(loc)) if hasattr(ref.kin, "simplify_vector") else str(loc)
-
-
-# answers ----------------------------------------------------------------------------------------------
-def _values_of(answer) -> list:
-    """Every scalar an answer states (its value, the rates of an end state, frequencies ...)."""
-    v = answer.value
-    out = []
-    if isinstance(v, dict):
-        out += list(v.values())
-    elif isinstance(v, list | tuple):
-        for x in v:
-            out += _values_of(type("A", (), {"value": x, "details": {}})())
-    elif isinstance(v, sp.Basic):
-        out.append(v)
-    else:
-        for attr in ("configuration", "natural_frequencies"):
-            x = getattr(v, attr, None)
-            if isinstance(x, dict):
-                out += list(x.values())
-            elif isinstance(x, list | tuple):
-                out += list(x)
-    return [sp.sympify(x) for x in out if isinstance(x, sp.Basic | int | float)]
-
-
-def grade_answer(ref: Reference, st: Step) -> StepResult:
-    res = StepResult(st.index, st.kind, INCORRECT)
-    a = ref.answers().get(st.question)
-    if isinstance(a, Exception) or a is None:
-        res.feedback = [f"the engine could not answer '{st.question}' itself ({a}), so the answer is not graded"]
-        return res
-    res.expected = a.text
-    try:
-        claim = parse_scalar(st.claim, ref.scope, st.where)
-    except InputError:
-        claim = sp.Float(read("value", value, st.claim, st.where))
-    params = numeric_values_from(ref.system)
-    rtol = st.tolerance or ANSWER_RTOL
-    candidates = _values_of(a)
-    symbolic = bool(claim.free_symbols - {t})
-    for c in candidates:
-        if symbolic:
-            d = space.to_plain(claim - c)
-            vals = ref.sampler.evaluate([d, space.to_plain(c)])
-            if space.vanishes(vals[:, :1], np.abs(vals)):
-                res.verdict = CORRECT
-                return res
-        else:
-            cv = _num(c, params)
-            if cv is not None and math.isclose(float(claim), cv, rel_tol=rtol, abs_tol=rtol * 1e-3):
-                res.verdict = CORRECT
-                return res
-    uniq = []
-    for c in candidates:
-        if not any(sp.simplify(c - u) == 0 for u in uniq):
-            uniq.append(c)
-    shown = ", ".join(f"{text(c)}" + ("" if _num(c, params) is None or sp.sympify(c).is_number
-                                      else f" ≈ {_num(c, params):.6g}") for c in uniq[:3])
-    cv = _num(candidates[0], params) if candidates else None
-    cl = _num(claim, params)
-    if cv is not None and cl is not None:
-        if math.isclose(cl, -cv, rel_tol=rtol):
-            res.feedback.append("sign: the value has the wrong sign")
-        elif math.isclose(cl, math.degrees(cv), rel_tol=rtol):
-            res.feedback.append("unit: this is the angle in degrees; write it with its unit (e.g. '48.19 deg') "
-                                "or in radians")
-    res.feedback.append(f"the answer is {shown}" if shown else "the answer differs from the engine's")
-    res.differences.append((text(claim), shown))
-    return res
-
-
-def _num(expr, params) -> float | None:
-    try:
-        v = complex(sp.sympify(expr).xreplace(params).evalf())
-    except (TypeError, ValueError):
-        return None
-    if abs(v.imag) > 1e-9 * max(1.0, abs(v.real)) or not math.isfinite(v.real):
-        return None
-    return v.real

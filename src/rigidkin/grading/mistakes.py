@@ -93,6 +93,9 @@ def moment_candidates(ref: Reference, body, points, axes) -> list[Candidate]:
                 why = (f"wrong inertia: Ī (about the mass centre) was used for moments about {P.name}; the "
                        f"parallel-axis term m·d² is missing (I_{P.name} = Ī + m d²)")
                 out.append(Candidate(lab, _bare(ref, body, P, axis), body.name, "moment", P.name, why, right))
+                # Ī about P with the inertial-moment term written with a_P (r_PG × m a_P): the m d² α is lost
+                out.append(Candidate(lab, ref.moment_equation(body, P, axis, accel=kin.acceleration(P)), body.name,
+                                     "moment", P.name, why, right))
             else:
                 for Q in ref.body_points(body) + ref.contact_spots(body):
                     if Q is G or kin.is_zero_vector(kin.position(Q) - kin.position(G)):
@@ -125,4 +128,14 @@ def force_candidates(ref: Reference, body, directions, variants: bool = True) ->
         for why, a in wrong:
             out.append(Candidate(lab, ref.force_equation(body, e, accel=a), body.name, "force", None,
                                  f"wrong acceleration of the mass centre in m ā: {why}", right))
+    return out
+
+
+def system_candidates(ref: Reference, bodies, directions) -> list[Candidate]:
+    """Euler's 1st law for the whole system along each direction: the sum of the bodies' equations (the
+    forces between the bodies cancel), so that a whole-system balance is compared with its own kind."""
+    out = []
+    for e, name in directions:
+        expr = sum((ref.force_equation(b, e) for b in bodies), 0)
+        out.append(Candidate(f"Euler's 1st law for the whole system along {name}", expr, None, "force"))
     return out

@@ -19,6 +19,8 @@ def as_text(report: GradeReport) -> str:
     lines = [terminal_safe(head, newlines=False)]
     for s in report.steps:
         lines.append(terminal_safe(f"Step {s.index} ({s.kind}): {_MARK[s.verdict]} {s.verdict}", newlines=False))
+        if s.asks:
+            lines.append("    the question asks: " + terminal_safe(s.asks, newlines=False))
         for f in s.feedback:
             lines.append("    " + terminal_safe(f, newlines=False))
         if s.verdict != CORRECT and s.expected:
@@ -33,7 +35,8 @@ def as_data(report: GradeReport) -> dict:
         "title": report.title,
         "student": report.student,
         "steps": [{"index": s.index, "kind": s.kind, "verdict": s.verdict, "feedback": list(s.feedback),
-                   "claim": s.claim, "expected": s.expected, "carried_from": list(s.carried_from)}
+                   "claim": s.claim, "expected": s.expected, "carried_from": list(s.carried_from),
+                   "asks": s.asks}
                   for s in report.steps],
         "correct": report.correct,
         "total": len(report.steps),
@@ -63,7 +66,7 @@ def as_html(report: GradeReport) -> str:
                    f"{h(', '.join(map(str, s.carried_from)))}.</p>" if s.carried_from else "")
         rows.append(
             f"<tr class=\"{h(s.verdict)}\"><td>{s.index}</td><td>{h(s.kind)}</td>"
-            f"<td><code>{h(s.claim)}</code></td>"
+            f"<td><code>{h(s.claim)}</code>{'<p>The question asks: ' + h(s.asks) + '</p>' if s.asks else ''}</td>"
             f"<td><code>{h(s.expected) if s.verdict != CORRECT or s.expected else ''}</code></td>"
             f"<td><span class=\"verdict\">{h(_MARK[s.verdict])} {h(s.verdict)}</span>"
             f"{'<ul>' + fb + '</ul>' if fb else ''}"

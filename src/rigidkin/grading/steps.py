@@ -20,12 +20,14 @@ from ..base.errors import InputError
 from ..base.printing import text
 from ..io.expressions import parse_vector
 from . import space
+from .answers import grade_answer
 from .claims import Unreadable, parse_claim, read
 from .engine import Candidate, Reference, reference
 from .feedback import dimension_problem, expandable, term_diff
 from .impulse import grade_impulse
-from .kinds import grade_answer, grade_fbd, grade_kinematics
-from .mistakes import force_candidates, moment_candidates
+from .kinds import grade_fbd, grade_kinematics
+from .mistakes import force_candidates, moment_candidates, system_candidates
+from .regimes import RegimeChoice, regime_choice
 from .verdicts import CORRECT, INCORRECT, UNREADABLE, Carried, GradeReport, StepResult
 from .worksheet import Step, Worksheet, load_worksheet
 
@@ -45,6 +47,7 @@ def grade(ws: Worksheet) -> GradeReport:
             raise InputError(f"the problem asks no question named '{st.question}'.", where=st.where,
                              hint=f"Questions of {ws.problem}: {known}.")
     carried = Carried()
+    rc = regime_choice(ref, ws)
     results = []
     for st in ws.steps:
         claim = st.claim if isinstance(st.claim, str) else "; ".join(st.claim)
@@ -52,13 +55,13 @@ def grade(ws: Worksheet) -> GradeReport:
             if st.kind == "kinematics":
                 res = grade_kinematics(ref, st, carried)
             elif st.kind == "fbd":
-                res = grade_fbd(ref, st, carried)
+                res = grade_fbd(ref, st, carried, rc.scoped(st.question, ref), rc)
             elif st.kind == "answer":
                 res = grade_answer(ref, st)
             elif st.law == "impulse":
                 res = grade_impulse(ref, st)
             else:
-                res = grade_equation(ref, st, carried)
+                res = grade_equation(ref, st, carried, rc)
         except Unreadable as exc:
             res = StepResult(st.index, st.kind, UNREADABLE, [str(exc)])
         res.claim = claim
@@ -91,6 +94,8 @@ def _make_candidates(ref: Reference, st: Step, variants: bool):
             (ref.directions() if st.law else ref.axes())
         for b in bodies:
             out += force_candidates(ref, b, dirs, variants)
+        if len(bodies) > 1:
+            out += system_candidates(ref, bodies, dirs)
     if "moment" in laws:
         axes = [(direction, st.direction)] if direction is not None else ref.axes(moment=True)
         for b in bodies:
@@ -110,7 +115,7 @@ def _make_candidates(ref: Reference, st: Step, variants: bool):
     return out
 
 
-def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
+def grade_equation(ref: Reference, st: Step, carried: Carried, rc: RegimeChoice | None = None) -> StepResult:
     lhs, rhs = parse_claim(ref, st)
     expr = lhs - rhs
     res = StepResult(st.index, st.kind, INCORRECT)
@@ -137,8 +142,10 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
             res.expected = _expected_eom(ref)
             return res
     dim = dimension_problem(ref, lhs, rhs)
-    regimes = ref.regimes()
-    for reg in regimes:
+    scope = (rc or RegimeChoice(ref.regimes())).scoped(st.question, ref)
+    regimes = scope.for_step()
+    holds = {}
+    for reg in ref.regimes():
         try:
             row = ref.row(expr, reg)
         except space.NotLinear:
@@ -148,32 +155,54 @@ def grade_equation(ref: Reference, st: Step, carried: Carried) -> StepResult:
             res.feedback = ["it reduces to 0 = 0 once the constraints are used: true, but it says nothing about "
                             "the motion"]
             return res
-        if space.in_span(ref.basis(reg), row):
-            res.verdict = CORRECT
-            res.feedback = notes + ([f"a valid combination of the balance equations ({_regime_text(reg, regimes)})"]
-                                    if len(regimes) > 1 else [])
-            res.expected = _expected_eom(ref) if st.kind == "eom" else ""
-            if st.kind == "balance":
-                carried.balances.append((st.index, None, None))
-            return res
+        holds[id(reg)] = bool(space.in_span(ref.basis(reg), row))
+    good = [r for r in regimes if holds[id(r)]]
+    if good:
+        reg = good[0]
+        if len([r for r in ref.regimes() if holds[id(r)]]) == 1 and rc is not None and scope is rc:
+            rc.holds_in(reg, st.index)
+        res.verdict = CORRECT
+        res.feedback = notes + ([scope.note() or f"a valid combination of the balance equations "
+                                 f"({_regime_text(reg, ref.regimes())})"]
+                                if len(ref.regimes()) > 1 and len(good) == 1 and
+                                len([r for r in ref.regimes() if holds[id(r)]]) == 1 else [])
+        res.expected = _expected_eom(ref) if st.kind == "eom" else ""
+        if st.kind == "balance":
+            carried.balances.append((st.index, None, None))
+        return res
+    other = next((r for r in ref.regimes() if holds[id(r)]), None)
+    if other is not None:
+        res.feedback = notes + [scope.wrong_regime(other)]
+        res.expected = _expected_eom(ref, regimes[0]) if st.kind == "eom" else ""
+        return res
     reg = regimes[0]
     row = ref.row(expr, reg)
+    # one cause, the most specific: carried from an earlier step, else a named mistake, else a dimension,
+    # else the term that differs (the rest of the differing terms are listed as differences)
     fb = list(notes)
-    if dim:
-        fb.append(dim)
-    named = _named_mistake(ref, st, row, reg)
-    if named:
-        fb.append(named)
+    diff, target, nearest = _best_diff(ref, st, expr, reg)
+    if diff is not None:
+        res.differences = [(text(u), "") for u in diff.extra] + [("", text(r)) for r in diff.missing] + \
+            [(text(u), text(-u)) for u in diff.signs] + [(text(u), text(r)) for u, r in diff.coefficients]
     via = _carried(ref, row, reg, carried)
     if via:
         res.carried_from = via
-        fb.append("carried error: it follows correctly from your step" + ("s " if len(via) > 1 else " ")
-                  + ", ".join(map(str, via)) + ", which " + ("are" if len(via) > 1 else "is") + " wrong")
-    diff, target, nearest = _best_diff(ref, st, expr, reg)
-    if diff is not None and not named:
-        fb += diff.describe()
-        res.differences = [(text(u), "") for u in diff.extra] + [("", text(r)) for r in diff.missing] + \
-            [(text(u), text(-u)) for u in diff.signs] + [(text(u), text(r)) for u, r in diff.coefficients]
+        many = len(via) > 1
+        fb.append("carried error: it follows correctly from your step" + ("s " if many else " ")
+                  + ", ".join(map(str, via)) + ", which " + ("are" if many else "is") + " wrong; otherwise it is "
+                  "right")
+    else:
+        causes = diff.describe() if diff is not None else []
+        one_sign = diff is not None and len(diff.signs) == 1 and len(causes) == 1
+        named = None if one_sign else _named_mistake(ref, st, row, reg)   # one sign flipped: that is the cause
+        if named:
+            fb.append(named)
+        elif dim:
+            fb.append(dim)
+        elif causes:
+            more = len(causes) - 1
+            fb.append(causes[0] + (f" (and {more} more differing term{'s' if more > 1 else ''}: see the "
+                                   "differences)" if more else ""))
     if len(fb) == len(notes):
         fb.append("it is not a valid combination of the balance equations")
     res.feedback = fb
@@ -379,6 +408,6 @@ def _eom_forms(ref: Reference, reg, student):
     return out
 
 
-def _expected_eom(ref: Reference) -> str:
-    reg = ref.regimes()[0]
+def _expected_eom(ref: Reference, reg=None) -> str:
+    reg = reg or ref.regimes()[0]
     return "; ".join(f"{text(e)} = 0" for e in reg.eom)

@@ -6,8 +6,8 @@ from its own solve.  Where the original problem has an exact answer, the exact a
 variant's values must agree with the variant's own solve — the key is checked by two routes, and a
 variant whose two routes disagree is refused.  Keys are numbers with a relative tolerance.
 
-The export is Moodle XML (one numerical question per variant and answer); every text that came from
-the problem file is escaped for HTML and then for XML (ElementTree writes the XML escapes).
+Every question of the problem is kept: one whose answer gives no number is named in ``left_out`` with
+why.  The exports (Moodle XML, PrairieLearn question folders) are in :mod:`rigidkin.grading.exports`.
 """
 
 from __future__ import annotations
@@ -15,19 +15,22 @@ from __future__ import annotations
 import copy
 import math
 import random
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import sympy as sp
+from sympy.physics.vector import dynamicsymbols
 
 from .. import examples
 from ..analysis.answers import answer, numeric_values_from
 from ..base.errors import InputError, RigidkinError
 from ..base.printing import text
-from ..base.textsafe import html_text, is_identifier
+from ..base.textsafe import is_identifier
 from ..base.units import LENGTH, TIME, to_si
 from ..io.problem import build_problem, read_toml
+from .answers import answer_quantities
+
+t = dynamicsymbols._t
 
 MAX_COUNT = 200
 DEFAULT_RTOL = 0.01
@@ -40,6 +43,11 @@ class KeyEntry:
     value: float
     tolerance: float     # absolute, for the platform
     exact: str = ""      # the closed form, where there is one
+    symbol: str = ""     # the quantity asked: its symbol, words, SI unit and kind
+    words: str = ""
+    unit: str = ""
+    kind: str = ""
+    at: str = ""         # where a function of the state is evaluated (" at the start (θ = 0.3)")
 
 
 @dataclass
@@ -50,6 +58,7 @@ class Variant:
     keys: list[KeyEntry] = field(default_factory=list)
     fixed: dict = field(default_factory=dict)      # the parameters kept, in their declared units
     notes: list[str] = field(default_factory=list)
+    left_out: list = field(default_factory=list)    # (question, why) for each question without a key
 
 
 @dataclass
@@ -160,47 +169,73 @@ def make_set(problem: str, count: int, seed: int, vary: dict, rtol: float = DEFA
                       {q.name: q.fields.get("description") or q.name for q in base_spec.questions}, out)
 
 
-def _labelled(a) -> list[tuple[str, sp.Expr]]:
-    v = a.value
-    if isinstance(v, dict):
-        return [(text(k), sp.sympify(x)) for k, x in v.items()]
-    if isinstance(v, sp.Basic):
-        if isinstance(v, sp.Eq):
-            return [(text(v.lhs), v.rhs)]
-        head = a.text.split(" = ")[0] if " = " in a.text else ""
-        return [(head if 0 < len(head) <= 20 else a.question.name, v)]
-    cfg = getattr(v, "configuration", None)
-    out = [(text(k), sp.sympify(x)) for k, x in (cfg or {}).items()]
-    out += [(f"natural frequency {i + 1}", sp.sympify(x)) for i, x in enumerate(getattr(v, "natural_frequencies", ())
-                                                                                  or ())]
+def _labelled(system, a) -> list:
+    """(label, value, quantity) for each number-like quantity of an answer (stability is not a number)."""
+    out = []
+    for q in answer_quantities(system, a):
+        if q.kind == "stability":
+            continue
+        out.append((q.symbol + (f" — {q.words}" if q.words else ""), q.value, q))
     return out
 
 
-def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
+def _at_start(system, expr):
+    """A function of the state evaluated at the problem's declared start (None: no start declared, or the
+    value still depends on the state)."""
+    sub = {}
+    for c in system.coordinate_info.values():
+        if c.initial is None and c.rate is None:
+            continue                   # not declared (a dependent coordinate): the value must not need it
+        sub[c.symbol.diff(t)] = c.rate if c.rate is not None else 0
+        sub[c.symbol] = c.initial if c.initial is not None else 0
+    e = sp.sympify(expr).xreplace({k: v for k, v in sub.items() if isinstance(k, sp.Derivative)}).xreplace(sub)
+    if not sub or e.atoms(sp.Derivative) or any(f.has(t) for f in e.atoms(sp.Function)):
+        return None, ""
+    shown = ", ".join(f"{text(k)} = {v:g}" for k, v in sub.items() if k in sp.sympify(expr).atoms(sp.Function,
+                                                                                                    sp.Derivative))
+    return e, shown
 
+
+def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
+    """Every question's numbers from the variant's own solve; one that gives none is left out, with why."""
     values = numeric_values_from(system)
     context = {}
     for q in spec.questions:
         try:
             a = answer(system, q, context)
         except RigidkinError as exc:
-            var.notes.append(f"{q.name}: not answered ({exc.message})")
+            var.left_out.append((q.name, f"not answered ({exc.message})"))
             continue
         context[q.name] = a
-        base = dict(_labelled(base_answers[q.name])) if q.name in base_answers else {}
-        for label, expr in _labelled(a):
+        base = {lab: x for lab, x, _ in _labelled(system, base_answers[q.name])} if q.name in base_answers else {}
+        got = 0
+        state_bound = []
+        for label, expr, qty in _labelled(system, a):
             num = _number(expr, values)
+            where = ""
             if num is None:
-                continue            # not a number at the parameters' values (a function of the state)
+                at, shown = _at_start(system, expr)
+                num = _number(at, values) if at is not None else None
+                if num is None:
+                    state_bound.append(label)
+                    continue
+                where = (f" at {shown} along the motion of the question ({text(a.details['integral'])})"
+                         if (a.details or {}).get("integral") is not None else f" at the start ({shown})")
             tol = max(rtol * abs(num), (a.tolerance or 0.0), 1e-12)
             exact = base.get(label)
             if exact is not None and base_answers[q.name].exact:
-                check = _number(exact, values)
+                check = _number(exact if not where else _at_start(system, exact)[0], values)
                 if check is None or not math.isclose(check, num, rel_tol=max(rtol / 10, 1e-6), abs_tol=1e-9):
                     raise RigidkinError(f"variant {var.index}: the answer {label} of '{q.name}' is {num:.6g} by the "
                                         f"variant's own solve but {check} from the exact answer {text(exact)}; the "
                                         "key is refused.", hint="Narrow the --vary ranges (a regime may change).")
-            var.keys.append(KeyEntry(q.name, label, num, tol, text(exact) if exact is not None else ""))
+            var.keys.append(KeyEntry(q.name, label + where, num, tol, text(exact) if exact is not None else "",
+                                     qty.symbol, qty.words, qty.unit, qty.kind, where))
+            got += 1
+        if not got:
+            why = (f"its answer ({', '.join(state_bound)}) is a function of the state, not a number, and the problem "
+                   "declares no start to evaluate it at") if state_bound else "its answer holds no number"
+            var.left_out.append((q.name, why))
 
 
 def _number(expr, values) -> float | None:
@@ -221,7 +256,9 @@ def as_data(ps: ProblemSet) -> dict:
                           "kept": {n: {"value": x, "unit": v.units[n]} for n, x in v.fixed.items()},
                           "answers": [{"question": k.question, "quantity": k.label, "value": k.value,
                                        "tolerance": k.tolerance, "exact": k.exact} for k in v.keys],
-                          "notes": v.notes} for v in ps.variants]}
+                          "notes": v.notes,
+                          "left_out": [{"question": q, "why": w} for q, w in v.left_out]} for v in ps.variants],
+            "left_out": [{"question": q, "why": w} for q, w in left_out(ps)]}
 
 
 def as_text(ps: ProblemSet) -> str:
@@ -233,37 +270,16 @@ def as_text(ps: ProblemSet) -> str:
             lines.append(f"    {k.question}: {k.label} = {k.value:.6g} ± {k.tolerance:.2g}")
         for n in v.notes:
             lines.append(f"    {n}")
+    for q, why in left_out(ps):
+        lines.append(f"Left out of every variant: {q}: {why}")
     return "\n".join(lines)
 
 
-def as_moodle(ps: ProblemSet) -> str:
-    """Moodle XML: one numerical question per variant and answer."""
-    quiz = ET.Element("quiz")
-    cat = ET.SubElement(quiz, "question", type="category")
-    ET.SubElement(ET.SubElement(cat, "category"), "text").text = f"$course$/rigidkin/{_plain(ps.title)}"
+def left_out(ps: ProblemSet) -> list:
+    """(question, why) for each question that has no key in some variant (the first reason given)."""
+    out = {}
     for v in ps.variants:
-        vals = "".join(f"<li>{html_text(n)} = {html_text(f'{x:g}')} {html_text(v.units[n])}</li>"
-                       for n, x in sorted({**v.fixed, **v.values}.items()))
-        for k in v.keys:
-            q = ET.SubElement(quiz, "question", type="numerical")
-            ET.SubElement(ET.SubElement(q, "name"), "text").text = _plain(
-                f"{ps.title} — variant {v.index} — {k.question}: {k.label}")
-            body = (f"<p>{html_text(ps.statement)}</p><p>Values:</p><ul>{vals}</ul>"
-                    f"<p>{html_text(ps.questions.get(k.question, k.question))}: give {html_text(k.label)} "
-                    "in SI units.</p>")
-            qt = ET.SubElement(q, "questiontext", format="html")
-            ET.SubElement(qt, "text").text = _plain(body)
-            ET.SubElement(q, "defaultgrade").text = "1"
-            ans = ET.SubElement(q, "answer", fraction="100")
-            ET.SubElement(ans, "text").text = repr(float(k.value))
-            ET.SubElement(ans, "tolerance").text = repr(float(k.tolerance))
-            fb = ET.SubElement(ans, "feedback", format="html")
-            ET.SubElement(fb, "text").text = f"<p>{html_text(k.exact)}</p>" if k.exact else ""
-    ET.indent(quiz)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(quiz, encoding="unicode") + "\n"
+        for q, why in v.left_out:
+            out.setdefault(q, why)
+    return list(out.items())
 
-
-def _plain(s: str) -> str:
-    """Text for an XML text node: characters XML 1.0 cannot hold removed (ElementTree escapes the rest)."""
-    return "".join(ch for ch in str(s) if ch in "\t\n\r" or (ord(ch) >= 0x20 and not 0xD800 <= ord(ch) <= 0xDFFF
-                                                              and ch not in "\ufffe\uffff"))

@@ -22,6 +22,7 @@ class StepResult:
     expected: str = ""                  # the engine's form of the step, for the report
     carried_from: tuple[int, ...] = ()  # earlier steps this (wrong) step follows from
     differences: list[tuple[str, str]] = field(default_factory=list)   # (student's, engine's) per difference
+    asks: str = ""                      # an answer step: what its question asks, in words and symbol
 
 
 @dataclass

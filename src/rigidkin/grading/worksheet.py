@@ -4,6 +4,7 @@
 
     problem = "ladder"              # a bundled example, or a problem file relative to the worksheet
     student = "A. Student"          # optional
+    motion = "dot(x) > 0"           # optional: the motion that fixes a sliding regime
 
     [[step]]
     kind = "kinematics"             # kinematics | fbd | balance | eom | answer
@@ -33,7 +34,7 @@ from .. import examples
 from ..base.errors import InputError
 from ..base.textsafe import is_identifier
 from ..io.expressions import MAX_LENGTH
-from ..io.locate import Locator
+from ..io.locate import Locator, resolve_problem
 from ..io.reading import _parse_toml
 
 MAX_BYTES = 200_000        # a worksheet is a page of steps
@@ -43,8 +44,8 @@ KINDS = ("kinematics", "fbd", "balance", "eom", "answer")
 LAWS = {"force": "force", "euler1": "force", "newton": "force", "momentum": "force",
         "moment": "moment", "moments": "moment", "euler2": "moment", "angular-momentum": "moment",
         "energy": "energy", "work-energy": "energy", "power": "energy", "impulse": "impulse"}
-_TOP = {"problem", "student", "title", "step", "mode"}
-_STEP = {"kind", "claim", "body", "point", "law", "direction", "question", "tolerance", "note"}
+_TOP = {"problem", "student", "title", "step", "mode", "motion"}
+_STEP = {"kind", "claim", "body", "point", "law", "direction", "question", "tolerance", "note", "quantity"}
 _CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f\u202a-\u202e\u2066-\u2069]")
 _HINT = ("A worksheet has problem = \"NAME or FILE.toml\" and [[step]] tables with kind (kinematics, fbd, balance, "
          "eom, answer) and claim; see docs/guide/grading.md.")
@@ -65,6 +66,7 @@ class Step:
     question: str | None = None
     tolerance: float | None = None
     note: str = ""
+    quantity: str | None = None     # answer: which quantity of the question (phi, dot(phi), N, frequency ...)
 
 
 @dataclass(frozen=True)
@@ -76,6 +78,8 @@ class Worksheet:
     student: str = ""
     title: str = ""
     mode: dict = field(default_factory=dict)
+    motion: str = ""                # the motion that fixes the sliding regime, e.g. "dot(x) - r*dot(phi) > 0"
+    motion_where: str = ""
 
 
 def load_worksheet(path: Path | str) -> Worksheet:
@@ -137,9 +141,14 @@ def _claim_text(value, loc, *path) -> str:
 
 
 def _problem_ref(problem: str, path: Path, where: str) -> str:
-
-    if problem in examples.names() and not problem.endswith(".toml"):
-        return problem
+    """A file beside the worksheet (or at an absolute path) first; a bundled example only when no such file
+    exists (a folder named like an example never hides it)."""
+    how, found = resolve_problem(problem, path.parent)
+    if how == "example":
+        toml = examples.HERE / f"{problem}.toml"
+        return str(toml) if toml.is_file() else problem
+    if found.is_file() and problem.endswith(".toml"):
+        return str(found)
     if not problem.endswith(".toml"):
         raise InputError(f"'{problem}' is neither a bundled example nor a problem file (.toml).", where=where,
                          hint=f"Bundled examples: {', '.join(examples.names())}.")
@@ -176,7 +185,8 @@ def _build(data: dict, loc: Locator, path: Path) -> Worksheet:
     if len(steps_raw) > MAX_STEPS:
         raise InputError(f"the worksheet has {len(steps_raw)} steps (at most {MAX_STEPS}).", where=str(path))
     steps = tuple(_step(s, i, loc) for i, s in enumerate(steps_raw))
-    return Worksheet(path, problem, ref, steps, student, title, dict(mode))
+    motion = _claim_text(data["motion"], loc, "motion") if "motion" in data else ""
+    return Worksheet(path, problem, ref, steps, student, title, dict(mode), motion, _at(loc, "motion"))
 
 
 def _step(raw, i: int, loc: Locator) -> Step:
@@ -225,5 +235,6 @@ def _step(raw, i: int, loc: Locator) -> Step:
     if kind == "answer" and "question" not in names:
         raise InputError("an answer step names the question it answers (question = \"NAME\").",
                          where=_at(loc, *base), hint="The questions are the [[ask.question]] names of the problem.")
+    quantity = _claim_text(raw["quantity"], loc, *base, "quantity") if "quantity" in raw else None
     return Step(i + 1, kind, claim, _at(loc, *base), names.get("body"), names.get("point"), law, direction,
-                names.get("question"), None if tol is None else float(tol), note)
+                names.get("question"), None if tol is None else float(tol), note, quantity)

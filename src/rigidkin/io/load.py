@@ -12,6 +12,7 @@ from pathlib import Path
 from .. import examples
 from ..base.errors import RigidkinError
 from ..base.units import parse_quantity
+from .locate import resolve_problem
 
 
 def load_system(problem: str):
@@ -26,7 +27,8 @@ def load_system(problem: str):
     if path.suffix == ".toml" and not path.exists() and path.stem in examples.names():
         raise RigidkinError(f"there is no file {problem}.", where=problem,
                             hint=f"The bundled example of that name is solved with 'rigidkin solve {path.stem}'.")
-    if path.suffix == ".toml" or path.exists():
+    how, _ = resolve_problem(problem)       # a file on disk first; a folder never hides an example
+    if how == "file" and (path.suffix == ".toml" or path.exists()):
         return load_problem(path)
     if problem in examples.names():
         toml = examples.HERE / f"{problem}.toml"

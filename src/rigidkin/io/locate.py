@@ -10,6 +10,9 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from pathlib import Path
+
+from .. import examples
 
 _KEY_PART = re.compile(r"[A-Za-z0-9_-]+|\"(?:[^\"\\]|\\.)*\"|'[^']*'")
 _KEY = re.compile(r"^\s*((?:[A-Za-z0-9_-]+|\"(?:[^\"\\]|\\.)*\"|'[^']*')"
@@ -147,3 +150,34 @@ class Locator:
                 out += f", line {line}"
             out += f", {dotted(path)}"
         return out
+
+
+# which problem a name means -------------------------------------------------------------------------------
+def resolve_problem(problem: str, folder=None) -> tuple[str, object]:
+    """What a problem argument means: ``("file", Path)`` or ``("example", NAME)``.
+
+    A path that exists on disk as a file always means that file (relative paths from ``folder``, else
+    the working folder); a bundled example's name means the example only when no such file exists —
+    a folder of that name (``collar-rod/`` holding worksheets) never hides the example.  A ``.toml``
+    path that does not exist stays a file (its reader says it is missing).
+    """
+    p = Path(problem)
+    if folder is not None and not p.is_absolute():
+        p = Path(folder) / p
+    if p.is_file():
+        return "file", p
+    if problem in examples.names() and not problem.endswith(".toml"):
+        return "example", problem
+    return "file", p
+
+
+def clashes(names, folder=".") -> dict:
+    """Bundled names that a file or folder in ``folder`` shares, with what a command given the name reads."""
+    out = {}
+    for name in names:
+        p = Path(folder) / name
+        if p.is_file():
+            out[name] = f"a file '{name}' is here: a command given '{name}' reads that file, not the example"
+        elif p.is_dir():
+            out[name] = f"a folder '{name}' is here: '{name}' still means the example (a folder is not a problem)"
+    return out
