@@ -20,8 +20,7 @@ from . import loads as L
 from .bodies import Body
 from .chains import remember, shallow
 from .checks import NONNEGATIVE, POSITIVE, REAL, check_identifier, require
-from .definitions import Defined, Definition
-from .definitions import define as define_quantity
+from .definitions import Defined, Definition, define as define_quantity
 from .frames import Frame, make_reference_frame
 from .points import Point
 from .quantities import Coordinate, Parameter
@@ -29,6 +28,7 @@ from .shapes import Shape
 from .speeds import angular_group, quasi_coordinate, quaternion_dcm, quaternion_group
 from .surfaces import Circle, Line
 from .system_constraints import ConstraintMethods
+from .system_drive import DriveMethods
 from .system_loads import LoadMethods
 from .values import _expr, _friction
 
@@ -46,7 +46,7 @@ def _latex_basis(basis):
     return tuple(out)
 
 
-class System(ConstraintMethods, LoadMethods):
+class System(ConstraintMethods, LoadMethods, DriveMethods):
     """A system of rigid bodies: build it with the methods below, then call :meth:`solve`.
 
     >>> import rigidkin as rk
