@@ -279,6 +279,8 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
     """Split constraint rows into built-in and rate-relating; eliminate dependent rates; integrate."""
     import numpy as np
 
+    from .determinacy import refuse_driven_against_ground
+
     ke = speeds_of(system)
     coords = [q for q in system.coordinates if q not in ke.replaced]    # Euler parameters: q̇ = W(q) u
     built, relating, exprs = [], [], []
@@ -304,6 +306,7 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
         raise ConstraintError("a constraint row involves accelerations.", where=relating[0].constraint)
     rng = random.Random(11)
     numA = _numeric_matrix(A, rng)
+    refuse_driven_against_ground(relating, exprs, numA)
     rank = np.linalg.matrix_rank(numA, tol=1e-9)
     if rank < len(relating):
         # find the rows that add nothing

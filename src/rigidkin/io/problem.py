@@ -363,7 +363,8 @@ class _Builder(ConstraintsAndLoads, Questions):
         path = ("bodies", name)
         cls = SHAPES[b.shape]
         kwargs = {}
-        data = b.model_dump(exclude={"shape", "frame", "at", "description", "centre_name"})
+        data = b.model_dump(exclude={"shape", "frame", "at", "description", "centre_name", "driven", "drive_torque",
+                                     "drive_force"})
         for key, v in data.items():
             if v is None:
                 if self._required_dimension(cls, key):
@@ -379,6 +380,13 @@ class _Builder(ConstraintsAndLoads, Questions):
         shape = self.call(path, cls, **kwargs)
         frame = self.frame(b.frame, path + ("frame",))
         at = self.point(b.at, path + ("at",))
+        if b.driven:        # moved by the laws of t in its frame and point, with the effort that drives it
+            self.call(path, self.s.drive, name, frame, at, shape, torque=b.drive_torque, force=b.drive_force,
+                      description=b.description)
+            return
+        if b.drive_torque or b.drive_force:
+            raise InputError("drive_torque and drive_force name the efforts of a driven body.", where=self.where(*path),
+                             hint="Add driven = true, or remove them.")
         self.call(path, self.s.body, name, shape, frame, at, b.description, b.centre_name)
 
     @staticmethod

@@ -72,6 +72,19 @@ class Drive(Constraint):
                 return s
         return None
 
+    def reaction_label(self, sym) -> str:
+        """What each effort of the drive is, with its positive sense."""
+        fr = self.body.frame
+        for s_, i, is_drive in self._torques(False):
+            if sym == s_ and is_drive:
+                return (f"torque needed to drive {self.body.name} about {fr.basis[i]}, positive in the sense of "
+                        f"the angle of {fr.name}")
+            if sym == s_:
+                return f"bearing torque on the driven body {self.body.name} about {fr.basis[i]}"
+        basis = (self.basis_frame.basis if self.basis_frame is not None else ("Ex", "Ey", "Ez"))
+        return (f"force needed to drive {self.body.name}, applied at {self.point.name}, along "
+                f"{basis['xyz'.index(sym.name[-1])]}")
+
     def rows(self, kin, state):
         frame = self.basis_frame or kin.F
         body, P = self.body, self.point

@@ -20,7 +20,8 @@ from . import loads as L
 from .bodies import Body
 from .chains import remember, shallow
 from .checks import NONNEGATIVE, POSITIVE, REAL, check_identifier, require
-from .definitions import Defined, Definition, define as define_quantity
+from .definitions import Defined, Definition
+from .definitions import define as define_quantity
 from .frames import Frame, make_reference_frame
 from .points import Point
 from .quantities import Coordinate, Parameter
@@ -132,8 +133,8 @@ class System(ConstraintMethods, LoadMethods, DriveMethods):
                    initial=None, rate=None, description: str = "", positive: bool = False) -> sp.Function:
         """Declare a generalised coordinate; returns the dynamicsymbol q(t).
 
-        ``sense`` says where it is measured from and which way is positive.  Coordinates declared
-        first are kept as independent; later ones are eliminated first by the constraints.
+        ``sense`` says where it is measured from and which way is positive.  Coordinates declared first are
+        kept as independent; later ones are eliminated first by the constraints.
         """
         self._claim(name, "coordinate")
         if kind not in ("angle", "length", "other"):
@@ -474,11 +475,10 @@ class System(ConstraintMethods, LoadMethods, DriveMethods):
               independent=None, substitutions: dict | None = None, integrate: bool = True):
         """Derive the equations of motion and reactions; returns a :class:`rigidkin.Solution`.
 
-        ``mode`` maps contact names to ``"slip"``, ``"stick"`` or ``"open"``;
-        ``independent`` lists the coordinates to keep (others are eliminated by the constraints);
-        ``substitutions`` replaces parameters (e.g. ``{mu: 0}`` on a frictionless stretch);
-        ``integrate=False`` keeps the coordinates whose relation comes from integrating a rate relation
-        (a constant of integration) as coordinates of their own, as a simulation entering the mode needs.
+        ``mode`` maps contact names to ``"slip"``, ``"stick"`` or ``"open"``; ``independent`` lists the coordinates to
+        keep (others are eliminated by the constraints); ``substitutions`` replaces parameters (e.g. ``{mu: 0}`` on a
+        frictionless stretch); ``integrate=False`` keeps the coordinates whose relation comes from integrating a rate
+        relation (a constant of integration) as coordinates of their own, as a simulation entering the mode needs.
         """
         from ..derive.laws import solve_with
 

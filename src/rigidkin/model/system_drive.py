@@ -43,7 +43,7 @@ class DriveMethods:
         body = self.body(name, shape if shape is not None else Massless(), frame, p, description=description)
         self._claim(name, "constraint", "constraint", owner=f"drive of {name}")
         con = Drive(name, body=body, point=p, basis_frame=basis, force_prefix=force, torque_name=torque,
-                    description=description or f"the prescribed motion of {name}")
+                    description=description)
         for sym in con.reactions():
             self._claim(sym.name, "reaction", owner=f"drive of {name}")
         self.constraints[name] = con
