@@ -1,0 +1,225 @@
+"""Driven bodies: a body moved by a given law of t, and the effort the law needs (System.drive, driven = true).
+
+Each answer is checked against what a student derives by hand: the equation of motion of the free coordinate
+in closed form, the relative equilibrium and its frequency, the drive torque as the rate of the angular
+momentum about the shaft (Euler's second law, with the momentum integrated over the rod here by sympy), the
+drive force as m a_G − ΣF of the rest (Euler's first law), and a simulation's recorded effort against the hand
+formula along the computed motion.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+import rigidkin as rk
+from rigidkin import examples
+from rigidkin.base.errors import ConstraintError, ModelError
+from rigidkin.io.problem import parse_problem
+from rigidkin.numeric.simulate import simulate
+
+t = dynamicsymbols._t
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _zero(e) -> bool:
+    return sp.simplify(sp.expand_trig(sp.sympify(e))) == 0
+
+
+def _shaft_system():
+    """The rod on a shaft turned at Ω, written here (the bundled example is checked against it below)."""
+    s = rk.System("shaft")
+    m, l, g = s.parameter("m", "kg", value=2.0), s.parameter("l", "m", value=0.8), s.parameter("g", "m/s^2", value=9.81)
+    Om = s.parameter("Omega", "rad/s", value=6.0)
+    th = s.coordinate("theta", "angle of the rod from the downward shaft", initial=0.5)
+    S = s.frame("S", angle=Om * t, axis="y")
+    shaft = s.drive("shaft", S)
+    R = s.frame("R", S, angle=th, axis="z")
+    G = s.point("G", offset=-l / 2 * R.y)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=G)
+    s.pin("O", s.origin, rod, shaft, axis="S.z")
+    s.gravity(g, -s.inertial.y)
+    return s, (m, l, g, Om, th)
+
+
+@pytest.fixture(scope="module")
+def shaft():
+    s, syms = _shaft_system()
+    return s, s.solve(), syms
+
+
+def test_shaft_equation_of_motion_and_relative_equilibrium(shaft):
+    s, sol, (m, l, g, Om, th) = shaft
+    acc = sol.accelerations[th]
+    # by hand (Lagrange in the turning frame): ⅓ m l² θ̈ = ⅓ m l² Ω² sinθ cosθ − m g (l/2) sinθ
+    assert _zero(acc - (Om**2 * sp.sin(th) * sp.cos(th) - 3 * g / (2 * l) * sp.sin(th)))
+    x = sp.Symbol("x")
+    f = acc.subs(th, x)
+    assert t not in f.free_symbols                              # a steady rotation: no explicit t in the EOM
+    star = sp.acos(3 * g / (2 * l * Om**2))
+    assert _zero(f.subs(x, star))                                          # cos θ* = 3g/(2lΩ²)
+    # small oscillations about θ*: ω_n² = −∂θ̈/∂θ = Ω² sin²θ*
+    w2 = -sp.diff(f, x).subs(x, star)
+    assert _zero(w2 - Om**2 * (1 - (3 * g / (2 * l * Om**2))**2))
+
+
+def test_shaft_torque_is_the_rate_of_angular_momentum_about_the_axis(shaft):
+    s, sol, (m, l, g, Om, th) = shaft
+    # by hand: a rod element at distance u from O is at u sinθ from the shaft's axis and turns with it at Ω
+    # (the swing θ̇ moves it in the shaft's plane, which adds nothing about the axis):
+    u = sp.Symbol("u", positive=True)
+    H_axis = sp.integrate(m / l * (u * sp.sin(th))**2 * Om, (u, 0, l))    # = ⅓ m l² sin²θ Ω
+    # Euler's 2nd law about the fixed axis Ey through O: gravity (along Ey) and the pin force at O have no moment
+    T_hand = sp.diff(H_axis, t)
+    T = sol.reactions["T_shaft"]
+    assert _zero(T - T_hand)
+    # zero at the relative equilibrium (no swing: constant H), and positive while the rod rises away from the axis
+    assert _zero(T.subs(th.diff(t), 0))
+    # the bearing torque and the drive force by Euler's laws for the rod (the shaft is massless)
+    yG = -l / 2 * sp.cos(th)
+    ay = sp.diff(yG, t, 2).subs(th.diff(t, 2), sol.accelerations[th])
+    Fy = sol.reactions["F_shafty"]
+    assert _zero(Fy - m * (ay + g))
+    assert _zero(sol.reactions["R_Oy"] - Fy)
+
+
+def test_shaft_every_law_agrees(shaft):
+    s, sol, (m, l, g, Om, th) = shaft
+    for method in ("lagrange", "kane"):
+        other = s.solve(method)
+        assert _zero(other.accelerations[th] - sol.accelerations[th]), method
+
+
+def test_simulation_records_the_drive_torque(shaft):
+    s, sol, (m, l, g, Om, th) = shaft
+    r = simulate(s, 2.0, {"theta": 0.3, "dot(theta)": 0.0}, n_points=201)
+    q, qd = r.q["theta"], r.rates["dot(theta)"]
+    hand = 2.0 * 0.8**2 * 6.0 * np.sin(2 * q) * qd / 3          # ⅓ m l² Ω θ̇ sin 2θ along the computed motion
+    assert np.max(np.abs(r.reactions["T_shaft"] - hand)) < 1e-8 * max(1.0, np.max(np.abs(hand)))
+    assert np.max(np.abs(hand)) > 1.0                               # the rod swings: the torque is not trivial
+    # the energy of the rod changes by the work of the drive: E − E0 − W stays at round-off
+    E, W = r.energy["E"], r.energy["W"]
+    assert abs(E[-1] - E[0]) > 0.1
+    assert np.max(np.abs(E - E[0] - W)) < 1e-6
+
+
+def test_hinge_against_the_ground_in_a_driven_frame_is_refused_with_the_way_out():
+    s = rk.System("bad")
+    m, l, g = s.parameter("m", "kg"), s.parameter("l", "m"), s.parameter("g", "m/s^2")
+    Om = s.parameter("Omega", "rad/s")
+    th = s.coordinate("theta")
+    S = s.frame("S", angle=Om * t, axis="y")
+    R = s.frame("R", S, angle=th, axis="z")
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=s.point("G", offset=-l / 2 * R.y))
+    s.pin("O", s.origin, rod, axis="S.z")
+    with pytest.raises(ConstraintError) as err:
+        s.solve()
+    msg = str(err.value)
+    assert "hinge O: rotation about y" in msg and "Omega = 0" in msg and "s.drive" in msg
+
+
+def test_a_driven_body_needs_a_prescribed_motion():
+    s = rk.System("bad")
+    th = s.coordinate("theta")
+    S = s.frame("S", angle=th)
+    with pytest.raises(ModelError, match="turns with the coordinate"):
+        s.drive("shaft", S)
+    with pytest.raises(ModelError, match="is the ground"):
+        s.drive("still", s.inertial)
+
+
+def test_pendulum_on_a_vibrating_support():
+    """The support moves as A cos ωt along Ey: l θ̈ = −(g − A ω² cos ωt) sin θ, and the force it needs."""
+    s = rk.System("vibrating")
+    m, l, g = s.parameter("m", "kg", value=1.0), s.parameter("l", "m", value=0.5), s.parameter("g", "m/s^2", value=9.81)
+    A, w = s.parameter("A", "m", value=0.02), s.parameter("omega", "rad/s", value=40.0)
+    th = s.coordinate("theta", "angle from the downward vertical", initial=0.3)
+    F = s.inertial
+    P = s.point("P", offset=A * sp.cos(w * t) * F.y)
+    s.drive("support", F, at=P)
+    R = s.frame("R", angle=th)
+    bob = s.body("bob", rk.shapes.PointMass(m), frame=R, at=s.point("B", P, offset=-l * R.y))
+    s.pin("P", P, bob, "support")
+    s.gravity(g)
+    sol = s.solve()
+    acc = sol.accelerations[th]
+    assert _zero(l * acc + (g - A * w**2 * sp.cos(w * t)) * sp.sin(th))
+    # Euler's 1st law for the bob (the support is massless): the support's force is m a_B + m g Ey
+    xB, yB = l * sp.sin(th), A * sp.cos(w * t) - l * sp.cos(th)
+    sub = {th.diff(t, 2): acc}
+    Fx = sol.reactions["F_supportx"]
+    Fy = sol.reactions["F_supporty"]
+    assert _zero(Fx - m * sp.diff(xB, t, 2).subs(sub))
+    assert _zero(Fy - m * (sp.diff(yB, t, 2).subs(sub) + g))
+    assert _zero(sol.reactions["T_support"])
+    # the laws that eliminate the reactions agree, t and all
+    assert _zero(s.solve("lagrange").accelerations[th] - acc)
+
+
+def test_bead_in_a_slot_of_a_turntable_2d():
+    """A bead in a smooth radial slot of a turntable turned at Ω (planar): r̈ = Ω² r, the slot pushes with
+    N = 2 m Ω ṙ (Coriolis), and the turntable needs T = d/dt (m r² Ω) = 2 m Ω r ṙ."""
+    s = rk.System("turntable")
+    m, Om = s.parameter("m", "kg", value=0.2), s.parameter("Omega", "rad/s", value=3.0)
+    x = s.coordinate("x", "bead along the slot", kind="length", initial=0.1)
+    y = s.coordinate("y", "bead across the slot", kind="length")
+    T = s.frame("T", angle=Om * t)
+    table = s.drive("table", T, description="a massless turntable")
+    bead = s.body("bead", rk.shapes.PointMass(m), frame=T, at=s.point("B", offset=x * T.x + y * T.y))
+    s.contact("slot", bead, s.line(s.origin, T.y, body=table), unilateral=False)
+    sol = s.solve()
+    assert tuple(sol.coordinates) == (x,)                      # y is held by the slot
+    assert _zero(sol.accelerations[x] - Om**2 * x)
+    N = sol.reactions["N_slot"]
+    assert _zero(N - 2 * m * Om * x.diff(t))
+    assert _zero(sol.reactions["T_table"] - sp.diff(m * x**2 * Om, t))
+
+
+def test_problem_file_through_the_command_line(tmp_path):
+    """The bundled problem file (a driven body in [bodies]) solved by ``python -m rigidkin solve``."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    run = subprocess.run([sys.executable, "-m", "rigidkin", "solve", "driven-shaft", "--format", "json"],
+                         capture_output=True, text=True, timeout=600, env=env, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    out = json.loads(run.stdout)
+    theta = sp.Function("theta")(t)
+    names = {"theta": sp.Function("theta"), "t": t, **{n: sp.Symbol(n, positive=True) for n in
+                                                        ("m", "l", "g", "Omega")}}
+    m, l, g, Om = (names[n] for n in ("m", "l", "g", "Omega"))
+    acc = sp.sympify(out["accelerations"]["theta"], locals=names)
+    assert _zero(acc - (Om**2 * sp.cos(theta) - 3 * g / (2 * l)) * sp.sin(theta))
+    T = sp.sympify(out["reactions"]["T_motor"], locals=names)
+    assert _zero(T - m * l**2 * Om * sp.sin(2 * theta) * theta.diff(t) / 3)
+    assert "T_motor = Ω·m·l²·θ̇·sin(2·θ)/3" in out["answer_text"]["motor_torque"]
+    eq = out["answer_text"]["relative_equilibrium"]
+    assert "acos(3·g/(2·Ω²·l))" in eq and "stable" in eq
+
+
+def test_bundled_example_python_and_file_agree(shaft):
+    _, sol, (m, l, g, Om, th) = shaft
+    py = examples.build("driven-shaft").solve()
+    text = (examples.HERE / "driven-shaft.toml").read_text()
+    fs = parse_problem(text[:text.find("[[ask.question]]")], "driven-shaft.toml")[0].solve()
+    for other in (py, fs):
+        assert _zero(other.accelerations[th] - sol.accelerations[th])
+        assert _zero(other.reactions["T_motor"]
+                     - sol.reactions["T_shaft"])
+
+
+def test_free_body_diagram_shows_the_drive_torque(shaft):
+    from rigidkin.report.fbd import free_body_diagram
+
+    s, sol, _ = shaft
+    fbd = free_body_diagram(sol)
+    on_shaft = fbd.loads_on("shaft")
+    assert any(d.reaction == "T_shaft" and d.kind == "torque" for d in on_shaft)
+    assert any(d.reaction == "F_shafty" and d.kind == "force" for d in on_shaft)
+    fbd.close()
