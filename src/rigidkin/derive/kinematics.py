@@ -26,6 +26,7 @@ from ..base.errors import ConstraintError
 from ..base.linear import linear_form
 from ..base.trace import Trace
 from ..model.speeds import is_quasi, speeds_of
+from .prescribed import refuse_driven_against_ground
 
 if TYPE_CHECKING:
     import numpy as np
@@ -278,8 +279,6 @@ def solve_square(A: sp.Matrix, b: sp.Matrix, simplify=algebra.readable, seed: in
 def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: Trace | None = None) -> Reduction:
     """Split constraint rows into built-in and rate-relating; eliminate dependent rates; integrate."""
     import numpy as np
-
-    from .determinacy import refuse_driven_against_ground
 
     ke = speeds_of(system)
     coords = [q for q in system.coordinates if q not in ke.replaced]    # Euler parameters: q̇ = W(q) u
