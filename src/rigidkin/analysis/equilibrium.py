@@ -54,6 +54,11 @@ class Equilibrium:
 def _generalised(solution):
     require_rate_speeds(solution.system, "an equilibrium's linearisation")
     regime = single_regime(solution)
+    if algebra.plain_state(regime.mass_matrix.row_join(regime.forcing))[0].has(t):
+        raise RigidkinError("the equations of motion depend on t explicitly (a law of t drives the motion): no "
+                            "state is at rest for all time, so there is no equilibrium to linearise about.",
+                            hint="Simulate the motion; a steady rotation written in the turning frame gives "
+                                 "equations free of t, whose equilibria are relative equilibria.")
     return regime, regime.mass_matrix, regime.forcing
 
 

@@ -56,7 +56,7 @@ class Drive(Constraint):
         k = drive_axis(self.body.frame)
         out = []
         for i in ((2,) if planar else (0, 1, 2)):
-            if i == k or planar:
+            if i == k:
                 out.append((sp.Symbol(self.torque_name or f"T_{self.name}", real=True), i, True))
             else:
                 out.append((sp.Symbol(f"M_{self.name}{'xyz'[i]}", real=True), i, False))
