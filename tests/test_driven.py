@@ -255,3 +255,34 @@ def test_reactions_at_an_instant(shaft):
             want = float(sol.reactions[name].subs(state).subs(vals).subs(t, when))
             assert abs(got[name] - want) < 1e-9 * max(1.0, abs(want)), (name, when)
     assert abs(sol.reactions_at({**state, t: 0.0})["F_shaftx"] - sol.reactions_at({**state, t: 0.4})["F_shaftx"]) > 0.1
+
+
+def test_sphere_rolling_on_a_turntable_3d():
+    """A uniform sphere (radius a) rolling on a massless turntable turned at Ω: its centre's velocity turns at
+    (2/7)Ω, v̇ = (2/7) Ω ez × v, so the spin's horizontal part changes as a ω̇_h × ez = v̇ − Ω ez × v
+    = −(5/7) Ω ez × v (no slip: v = ω × a ez + Ω ez × r).  Checked at a state where the body axes are the
+    inertial ones (quaternion 1), with the accelerations from M u̇ = f."""
+    from rigidkin.derive.evaluation import accelerations_at
+
+    s = rk.System("ball-on-turntable")
+    m, a = s.parameter("m", "kg", value=0.1), s.parameter("a", "m", value=0.02)
+    Om, g = s.parameter("Omega", "rad/s", value=3.0), s.parameter("g", "m/s^2", value=9.81)
+    x, y, z = (s.coordinate(n, f"centre along E{n}", kind="length") for n in "xyz")
+    F = s.inertial
+    table = s.drive("table", s.frame("T", angle=Om * t))
+    B = s.frame("B", quaternion=True)
+    ball = s.body("ball", rk.shapes.SolidSphere(m, a), frame=B, at=s.point("C", offset=x * F.x + y * F.y + z * F.z))
+    s.contact("P", ball, s.plane(s.origin, F.z, body=table), radius=a, friction="rolling", unilateral=False)
+    s.gravity(g, -F.z)
+    sol = s.solve()
+    e = [s.coordinate_info[f"B_e{i}"].symbol for i in range(4)]
+    w = (0.7, -0.4, 1.1)
+    r = (0.1, -0.05)
+    state = {x: r[0], y: r[1], z: 0.02, e[0]: 1.0, e[1]: 0.0, e[2]: 0.0, e[3]: 0.0}
+    state.update({q.diff(t): wi for q, wi in zip(sol.coordinates, w)})      # the body's angular speeds
+    dw = list(accelerations_at(sol, state).values())
+    Omega, rad = 3.0, 0.02
+    vx, vy = w[1] * rad - Omega * r[1], -w[0] * rad + Omega * r[0]
+    assert dw[0] == pytest.approx(5 / 7 * Omega * vx / rad, rel=1e-9)
+    assert dw[1] == pytest.approx(5 / 7 * Omega * vy / rad, rel=1e-9)
+    assert dw[2] == pytest.approx(0.0, abs=1e-9)
