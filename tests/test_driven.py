@@ -286,3 +286,43 @@ def test_sphere_rolling_on_a_turntable_3d():
     assert dw[0] == pytest.approx(5 / 7 * Omega * vx / rad, rel=1e-9)
     assert dw[1] == pytest.approx(5 / 7 * Omega * vy / rad, rel=1e-9)
     assert dw[2] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_driven_arm_with_mass_turned_by_a_law():
+    """A uniform rod (mass m, length l) turned about its end O in a vertical plane by the law φ = φ0 sin ωt:
+    the motor at O must give T = I_O φ̈ + m g (l/2) sin φ (Euler's 2nd law about the fixed point O), and the
+    joint force is m a_G − m g; a second rod hinged at its tip swings under it (a driven double pendulum)."""
+    s = rk.System("driven-arm")
+    m, l, g = s.parameter("m", "kg", value=1.5), s.parameter("l", "m", value=0.6), s.parameter("g", "m/s^2", value=9.81)
+    p0, w = s.parameter("phi0", "rad", value=0.4), s.parameter("omega", "rad/s", value=2.0)
+    th = s.coordinate("theta", "angle of the hanging rod from the downward vertical", initial=0.2)
+    phi = p0 * sp.sin(w * t)
+    A = s.frame("A", angle=phi)
+    arm = s.drive("arm", A, at=s.point("G1", offset=-l / 2 * A.y), shape=rk.shapes.SlenderRod(m, l, axis="y"),
+                  joint=s.origin, torque="T_motor")
+    tip = s.point("tip", offset=-l * A.y)
+    R = s.frame("R", angle=th)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=s.point("G2", tip, offset=-l / 2 * R.y))
+    s.pin("tip", tip, rod, arm)
+    s.gravity(g)
+    sol = s.solve()
+    # by hand: the hanging rod's pin force Q at the tip (from Euler's 1st law for it) acts on the arm at the tip;
+    # about O: T − m g (l/2) sin φ + (r_tip × (−Q))·Ez = (⅓ m l²) φ̈
+    acc = sol.accelerations[th]
+    sub = {th.diff(t, 2): acc}
+    xt, yt = l * sp.sin(phi), -l * sp.cos(phi)
+    x2, y2 = xt + l / 2 * sp.sin(th), yt - l / 2 * sp.cos(th)
+    Qx = m * sp.diff(x2, t, 2).subs(sub)
+    Qy = m * (sp.diff(y2, t, 2).subs(sub) + g)
+    T_hand = m * l**2 / 3 * sp.diff(phi, t, 2) + m * g * l / 2 * sp.sin(phi) + (xt * Qy - yt * Qx)
+    vals = {m: 1.5, l: 0.6, g: 9.81, p0: 0.4, w: 2.0}
+    T = sol.reactions["T_motor"]
+    for st in ({th: 0.3, th.diff(t): -1.2, t: 0.7}, {th: -1.0, th.diff(t): 0.5, t: 2.1}):
+        a = float(T.subs(st).subs(vals))
+        b = float(T_hand.subs(st).subs(vals))
+        assert a == pytest.approx(b, rel=1e-9), st
+        assert abs(a) > 0.05
+    # the hanging rod: (⅓ m l²) θ̈ about the tip, with the tip's acceleration as a moving support
+    at = [sp.diff(xt, t, 2), sp.diff(yt, t, 2)]
+    hand = (-(m * g + m * at[1]) * l / 2 * sp.sin(th) - m * at[0] * l / 2 * sp.cos(th)) / (m * l**2 / 3)
+    assert _zero(acc - hand)

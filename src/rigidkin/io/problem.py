@@ -364,7 +364,7 @@ class _Builder(ConstraintsAndLoads, Questions):
         cls = SHAPES[b.shape]
         kwargs = {}
         data = b.model_dump(exclude={"shape", "frame", "at", "description", "centre_name", "driven", "drive_torque",
-                                     "drive_force"})
+                                     "drive_force", "drive_joint"})
         for key, v in data.items():
             if v is None:
                 if self._required_dimension(cls, key):
@@ -381,11 +381,12 @@ class _Builder(ConstraintsAndLoads, Questions):
         frame = self.frame(b.frame, path + ("frame",))
         at = self.point(b.at, path + ("at",))
         if b.driven:        # moved by the laws of t in its frame and point, with the effort that drives it
+            joint = self.point(b.drive_joint, path + ("drive_joint",)) if b.drive_joint else None
             self.call(path, self.s.drive, name, frame, at, shape, torque=b.drive_torque, force=b.drive_force,
-                      description=b.description)
+                      description=b.description, joint=joint)
             return
-        if b.drive_torque or b.drive_force:
-            raise InputError("drive_torque and drive_force name the efforts of a driven body.", where=self.where(*path),
+        if b.drive_torque or b.drive_force or b.drive_joint:
+            raise InputError("drive_torque, drive_force and drive_joint are for a driven body.", where=self.where(*path),
                              hint="Add driven = true, or remove them.")
         self.call(path, self.s.body, name, shape, frame, at, b.description, b.centre_name)
 

@@ -89,6 +89,10 @@ class Drive(Constraint):
         frame = self.basis_frame or kin.F
         body, P = self.body, self.point
         rel_v = kin.material_velocity(body, kin.position(P)) - kin.velocity(P)   # ≡ 0: P is fixed in the body
+        if not kin.is_zero_vector(rel_v):
+            raise ModelError(f"the point {P.name} where the drive acts does not move with the driven body "
+                             f"{body.name}.", where=f"driven body {body.name}",
+                             hint="Give a joint fixed in the body (located from its point by a vector of its frame).")
         out = []
         n = 2 if kin.planar else 3
         for sym, e, axis in zip(self._forces(n), (frame.x, frame.y, frame.z), frame.basis):

@@ -15,7 +15,7 @@ class DriveMethods:
 
     def drive(self, name: str, frame: Frame, at: Point | str | None = None, shape: Shape | None = None,
               basis: Frame | None = None, torque: str | None = None, force: str | None = None,
-              description: str = "") -> Body:
+              description: str = "", joint: Point | str | None = None) -> Body:
         """A driven body ``name``: its frame and its point ``at`` (default the origin) move by given laws of t.
 
         Write the law in the frame's angle (``s.frame("S", angle=Omega*t, axis="y")``) and in the point's
@@ -25,7 +25,9 @@ class DriveMethods:
         ``basis``, the inertial frame by default; prefix ``force``) and the torque it applies: about the
         axis the frame turns about the drive torque ``T_<name>`` (or ``torque``), positive in the sense
         of the frame's angle — "the torque needed to turn the shaft" — and the bearing torques
-        ``M_<name>x ...`` about the frame's other axes.  Returns the body.
+        ``M_<name>x ...`` about the frame's other axes.  The drive acts at ``joint`` (default ``at``): give the
+        motor's joint when the shape is placed elsewhere (a driven arm placed at its mass centre, turned
+        about its end), so that ``T_<name>`` is the torque at the joint.  Returns the body.
         """
         where = f"driven body {name}"
         self._check_frame(frame, where)
@@ -36,13 +38,15 @@ class DriveMethods:
         p = self._check_point(at, where) if at is not None else self.origin
         if basis is not None:
             self._check_frame(basis, where)
+        j = self._check_point(joint, where) if joint is not None else p
         check_prescribed(self, frame, p, where)
+        check_prescribed(self, frame, j, where)
         if p.body is not None:
             raise ModelError(f"the point {p.name} is already fixed in body {p.body.name}.", where=where,
                              hint="Give the driven body a point of its own (a point located by a law of t).")
         body = self.body(name, shape if shape is not None else Massless(), frame, p, description=description)
         self._claim(name, "constraint", "constraint", owner=f"drive of {name}")
-        con = Drive(name, body=body, point=p, basis_frame=basis, force_prefix=force, torque_name=torque,
+        con = Drive(name, body=body, point=j, basis_frame=basis, force_prefix=force, torque_name=torque,
                     description=description)
         for sym in con.reactions():
             self._claim(sym.name, "reaction", owner=f"drive of {name}")
