@@ -326,3 +326,45 @@ def test_driven_arm_with_mass_turned_by_a_law():
     at = [sp.diff(xt, t, 2), sp.diff(yt, t, 2)]
     hand = (-(m * g + m * at[1]) * l / 2 * sp.sin(th) - m * at[0] * l / 2 * sp.cos(th)) / (m * l**2 / 3)
     assert _zero(acc - hand)
+
+
+def test_rotor_spun_on_a_free_pendulum_by_a_motor():
+    """A disk (mass M, radius r) at the end of a pendulum rod (mass m, length l), spun relative to the rod by a
+    motor at a constant rate s (carrier=): the disk's absolute rate is θ̇ + s, so the spin adds nothing to the
+    EOM, (⅓ m l² + M l² + ½ M r²) θ̈ = −(m l/2 + M l) g sin θ, and the motor torque is the rate of the disk's
+    spin momentum, T = ½ M r² θ̈ (Euler's 2nd law for the disk about its centre); the rod takes −T."""
+    s = rk.System("rotor-pendulum")
+    m, M, l = s.parameter("m", "kg", value=1.0), s.parameter("M", "kg", value=2.0), s.parameter("l", "m", value=0.5)
+    r, g, sp_rate = s.parameter("r", "m", value=0.1), s.parameter("g", "m/s^2", value=9.81), s.parameter("s", "rad/s")
+    th = s.coordinate("theta", "angle of the rod from the downward vertical", initial=0.4)
+    A = s.frame("A", angle=th)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=A, at=s.point("G", offset=-l / 2 * A.y))
+    s.pin("O", s.origin, rod)
+    D = s.frame("D", A, angle=sp_rate * t, description="turned by the motor relative to the rod")
+    C = s.point("C", offset=-l * A.y, body=rod)
+    s.drive("rotor", D, at=C, shape=rk.shapes.Disk(M, r, axis="z"), carrier=rod, torque="T_motor")
+    s.gravity(g)
+    sol = s.solve()
+    I = m * l**2 / 3 + M * l**2 + M * r**2 / 2
+    acc = sol.accelerations[th]
+    assert _zero(acc + (m * l / 2 + M * l) * g * sp.sin(th) / I)
+    assert _zero(sol.reactions["T_motor"] - M * r**2 / 2 * acc)
+    assert not sol.reactions["T_motor"].has(sp_rate)
+    # the pin at O carries the whole: its force is the total mass times the acceleration of the mass centre + weight
+    for method in ("lagrange", "kane"):
+        assert _zero(s.solve(method).accelerations[th] - acc), method
+
+
+def test_a_carrier_drive_needs_a_law_relative_to_the_carrier():
+    s = rk.System("bad-carrier")
+    m, l = s.parameter("m", "kg"), s.parameter("l", "m")
+    th = s.coordinate("theta")
+    A = s.frame("A", angle=th)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=A, at=s.point("G", offset=-l / 2 * A.y))
+    s.pin("O", s.origin, rod)
+    # the rotor's frame is turned from the ground, not from the rod: relative to the rod it turns by −θ
+    D = s.frame("D", angle=t)
+    s.drive("rotor", D, at=s.point("C", offset=-l * A.y, body=rod), shape=rk.shapes.Disk(m, l, axis="z"),
+            carrier=rod)
+    with pytest.raises(ModelError, match="not prescribed"):
+        s.solve()

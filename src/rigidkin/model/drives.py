@@ -16,12 +16,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import sympy as sp
-from sympy.physics.vector import Vector
+from sympy.physics.vector import Vector, dynamicsymbols
 
 from ..base import algebra
 from ..base.errors import ModelError
 from .constraints import Constraint, Row, _two_sided
 from .points import Point
+
+t = dynamicsymbols._t
 
 
 def drive_axis(frame) -> int | None:
@@ -44,6 +46,7 @@ class Drive(Constraint):
     basis_frame: object | None = None
     force_prefix: str | None = None
     torque_name: str | None = None
+    carrier: object | None = None       # the body the drive is mounted on (None: the ground)
 
     kind = "drive"
 
@@ -85,27 +88,43 @@ class Drive(Constraint):
         return (f"force needed to drive {self.body.name}, applied at {self.point.name}, along "
                 f"{basis['xyz'.index(sym.name[-1])]}")
 
+    def _relative(self, kin, v, what: str) -> None:
+        """The motion of the body relative to its carrier (the ground by default) must be the law's alone: no
+        rate of a coordinate or speed in it."""
+        rates = [q.diff(t) for q in kin.system.coordinates] + \
+            [w for g in getattr(kin.system, "speed_groups", {}).values() for w in g.speeds]
+        comps = [kin.simplify_expr(v.dot(e)) for e in (kin.F.x, kin.F.y, kin.F.z)]
+        if any(sp.sympify(c).has(*rates) for c in comps):
+            on = f"its carrier {self.carrier.name}" if self.carrier is not None else "the ground"
+            raise ModelError(f"the {what} of the driven body {self.body.name} relative to {on} depends on the "
+                             "rates of the coordinates: its motion is not prescribed.",
+                             where=f"driven body {self.name}",
+                             hint="Locate and turn the driven body from its carrier by laws of t alone (its joint "
+                                  "fixed in it), or drive it relative to the body that carries it (carrier=).")
+
     def rows(self, kin, state):
         frame = self.basis_frame or kin.F
-        body, P = self.body, self.point
-        rel_v = kin.material_velocity(body, kin.position(P)) - kin.velocity(P)   # ≡ 0: P is fixed in the body
-        if not kin.is_zero_vector(rel_v):
+        body, P, carrier = self.body, self.point, self.carrier
+        loc = kin.position(P)
+        if not kin.is_zero_vector(kin.material_velocity(body, loc) - kin.velocity(P)):
             raise ModelError(f"the point {P.name} where the drive acts does not move with the driven body "
                              f"{body.name}.", where=f"driven body {body.name}",
                              hint="Give a joint fixed in the body (located from its point by a vector of its frame).")
+        self._relative(kin, kin.velocity(P) - kin.material_velocity(carrier, loc), f"velocity of {P.name}")
+        self._relative(kin, kin.omega_of(body) - kin.omega_of(carrier), "angular velocity")
         out = []
         n = 2 if kin.planar else 3
         for sym, e, axis in zip(self._forces(n), (frame.x, frame.y, frame.z), frame.basis):
             out.append(Row(self.name, f"drive {self.name}: velocity of {P.name} along {axis} as prescribed",
-                           kin.simplify_expr(rel_v.dot(e)), sym,
-                           _two_sided(sym, e, "force", body, P, None, None, f"drive force {sym}", self.name)))
+                           sp.Integer(0), sym,
+                           _two_sided(sym, e, "force", body, P, carrier, P, f"drive force {sym}", self.name)))
         fr = body.frame
         for sym, i, is_drive in self._torques(kin.planar):
             e = kin.F.z if kin.planar else (fr.x, fr.y, fr.z)[i]
             what = "drive torque" if is_drive else "bearing torque"
             out.append(Row(self.name, f"drive {self.name}: rotation about {fr.basis[i]} as prescribed",
                            sp.Integer(0), sym,
-                           _two_sided(sym, e, "torque", body, None, None, None, f"{what} {sym}", self.name),
+                           _two_sided(sym, e, "torque", body, None, carrier, None, f"{what} {sym}", self.name),
                            kind="torque"))
         return out
 
