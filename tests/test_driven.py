@@ -368,3 +368,19 @@ def test_a_carrier_drive_needs_a_law_relative_to_the_carrier():
             carrier=rod)
     with pytest.raises(ModelError, match="not prescribed"):
         s.solve()
+
+
+def test_relative_equilibrium_answer_of_the_shaft(shaft):
+    """``equilibria`` finds cos θ* = 3g/(2lΩ²), stable, with ω_n = Ω sin θ* (the small oscillation of a
+    one-arm governor), and calls it a relative equilibrium."""
+    from rigidkin.analysis.equilibrium import equilibria
+
+    s, sol, (m, l, g, Om, th) = shaft
+    found = equilibria(sol)
+    star = sp.acos(3 * g / (2 * l * Om**2))
+    hits = [e for e in found if _zero(e.configuration[th] - star)]
+    assert len(hits) == 1
+    e = hits[0]
+    assert e.stability.startswith("stable")
+    assert _zero(e.natural_frequencies[0]**2 - Om**2 * sp.sin(star)**2)
+    assert str(e).startswith("relative equilibrium")

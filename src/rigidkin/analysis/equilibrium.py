@@ -26,6 +26,9 @@ from .integrals import single_regime
 t = dynamicsymbols._t
 
 
+_RELATIVE = "a relative equilibrium: at rest relative to the driven bodies, whose motion is prescribed"
+
+
 @dataclass(frozen=True)
 class Equilibrium:
     """An equilibrium configuration with its linearisation."""
@@ -43,7 +46,7 @@ class Equilibrium:
 
     def __str__(self) -> str:
         conf = ", ".join(f"{text(q)} = {text(v)}" for q, v in self.configuration.items())
-        out = f"equilibrium {conf}: {self.stability}"
+        out = f"{'relative ' if _RELATIVE in self.notes else ''}equilibrium {conf}: {self.stability}"
         if self.natural_frequencies:
             out += "; ω_n = " + ", ".join(text(w) for w in self.natural_frequencies)
         if self.damping_ratios:
@@ -173,5 +176,7 @@ def linearise(solution, at: dict) -> Equilibrium:
         v = _num(cond.expr.xreplace(point), values)
         if not cond.holds(v, 1e-9):
             notes.append(f"but {cond.label} fails there ({text(cond.expr)} = {v:.4g})")
+    if any(c.kind == "drive" for c in solution.system.constraints.values()):
+        notes.insert(0, _RELATIVE)     # a driven body turns: at rest relative to it, not to the ground
     return Equilibrium(dict(at), Mmat, Cmat, Kmat, tuple(lin), tuple(freqs), tuple(zetas),
                        tuple(complex(e) for e in eig), stab, tuple(notes))
