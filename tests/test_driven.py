@@ -367,6 +367,8 @@ def test_driven_arm_with_mass_turned_by_a_law():
     at = [sp.diff(xt, t, 2), sp.diff(yt, t, 2)]
     hand = (-(m * g + m * at[1]) * l / 2 * sp.sin(th) - m * at[0] * l / 2 * sp.cos(th)) / (m * l**2 / 3)
     assert _zero(acc - hand)
+    for method in ("lagrange", "kane"):
+        assert _zero(s.solve(method).accelerations[th] - acc), method
 
 
 def test_rotor_spun_on_a_free_pendulum_by_a_motor():
