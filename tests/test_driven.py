@@ -427,3 +427,51 @@ def test_relative_equilibrium_answer_of_the_shaft(shaft):
     assert e.stability.startswith("stable")
     assert _zero(e.natural_frequencies[0]**2 - Om**2 * sp.sin(star)**2)
     assert str(e).startswith("relative equilibrium")
+
+
+ROTOR_FILE = """
+title = "Rotor spun on a pendulum"
+[parameters]
+m = { unit = "kg", value = 1 }
+M = { unit = "kg", value = 2 }
+l = { unit = "m", value = 0.5 }
+r = { unit = "m", value = 0.1 }
+g = { unit = "m/s^2", value = 9.81 }
+s = { unit = "rad/s", value = 30 }
+[coordinates]
+theta = { sense = "angle of the rod from the downward vertical", initial = 0.4 }
+[frames]
+A = { angle = "theta", basis = ["ax", "ay", "az"] }
+D = { parent = "A", angle = "s*t", basis = ["dx", "dy", "dz"] }
+[points]
+G = { offset = "-l/2*ay" }
+C = { offset = "-l*ay", body = "arm" }
+Cr = { from = "C" }
+[bodies]
+arm = { shape = "slender_rod", mass = "m", length = "l", axis = "y", frame = "A", at = "G" }
+rotor = { shape = "disk", mass = "M", radius = "r", length = "r/10", axis = "z", frame = "D", at = "Cr", \
+driven = true, drive_carrier = "arm", drive_joint = "C", drive_torque = "T_motor" }
+[constraints]
+O = { type = "pin", point = "O", body_a = "arm" }
+[loads]
+gravity = { type = "gravity", g = "g" }
+"""
+
+
+def test_drive_on_a_carrier_in_a_problem_file():
+    s, _ = parse_problem(ROTOR_FILE, "rotor.toml")
+    sol = s.solve()
+    P = {n: sym for n, sym in s.parameters.items()}
+    th = s.coordinate_info["theta"].symbol
+    M, m, l, r, g = (P[n] for n in ("M", "m", "l", "r", "g"))
+    I_rotor = M * r**2 / 2                    # a disk (solid cylinder) about its axis, whatever its length
+    I = m * l**2 / 3 + M * l**2 + I_rotor
+    acc = sol.accelerations[th]
+    assert _zero(acc + (m * l / 2 + M * l) * g * sp.sin(th) / I)
+    assert _zero(sol.reactions["T_motor"] - I_rotor * acc)
+
+
+def test_drive_fields_without_driven_are_refused():
+    text = ROTOR_FILE.replace("driven = true, ", "")
+    with pytest.raises(rk.InputError, match="driven body"):
+        parse_problem(text, "rotor.toml")
