@@ -25,6 +25,9 @@ from .linear import _is_real, explicit_time, linearise_about, position_gaps, pre
 t = dynamicsymbols._t
 
 
+_RELATIVE = "a relative equilibrium: at rest relative to the driven bodies, whose motion is prescribed"
+
+
 @dataclass(frozen=True)
 class Equilibrium:
     """An equilibrium configuration with its linearisation."""
@@ -42,7 +45,7 @@ class Equilibrium:
 
     def __str__(self) -> str:
         conf = ", ".join(f"{text(q)} = {text(v)}" for q, v in self.configuration.items())
-        out = f"equilibrium {conf}: {self.stability}"
+        out = f"{'relative ' if _RELATIVE in self.notes else ''}equilibrium {conf}: {self.stability}"
         if self.natural_frequencies:
             out += "; ω_n = " + ", ".join(text(w) for w in self.natural_frequencies)
         if self.damping_ratios:
@@ -212,5 +215,7 @@ def linearise(solution, at: dict) -> Equilibrium:
         if not cond.holds(v, 1e-9):
             notes.append(f"but {cond.label} fails there ({text(cond.expr)} = {v:.4g})")
     notes = list(lin.notes) + notes
+    if any(c.kind == "drive" for c in solution.system.constraints.values()):
+        notes.insert(0, _RELATIVE)     # a driven body turns: at rest relative to it, not to the ground
     return Equilibrium(configuration, Mmat, Cmat, Kmat, tuple(eom), tuple(freqs), tuple(zetas),
                        tuple(complex(e) for e in eig), stab, tuple(notes))

@@ -29,7 +29,7 @@ def full_state(solution, state: Mapping, values: Mapping | None = None) -> tuple
     for k, v in (values or {}).items():
         params[k] = float(v)
     out = {k: float(v) for k, v in state.items()}
-    num = {**params}
+    num = {**params, t: out.get(t, 0.0)}        # the instant, where a law of t drives the motion
 
     def at(expr):
         e = sp.sympify(expr)
@@ -92,9 +92,10 @@ def _arguments(syms, back, state, params):
 
 
 def reactions_at(solution, state: Mapping, values: Mapping | None = None, regime=None) -> dict[str, float]:
-    """Every reaction (name → number) at ``state`` ({q: value, q̇: value}); parameters from ``values``
-    or their declared values.  Finite wherever the physics is: a closed form that gives 0/0 there is
-    replaced by the numeric solution of the balance equations at that state.
+    """Every reaction (name → number) at ``state`` ({q: value, q̇: value}, and the instant t where a law of t
+    drives the motion: default 0); parameters from ``values`` or their declared values.  Finite wherever the
+    physics is: a closed form that gives 0/0 there is replaced by the numeric solution of the balance
+    equations at that state.
     """
     full, params = full_state(solution, state, values)
     if regime is None:
@@ -107,27 +108,27 @@ def reactions_at(solution, state: Mapping, values: Mapping | None = None, regime
         full.update(accelerations_at(solution, full, params, regime))   # reactions written with q̈
     args = _arguments(syms, back, full, params)
     with np.errstate(all="ignore"):
-        closed = np.array(f_closed(0.0, *args), dtype=complex).ravel()
+        closed = np.array(f_closed(float(full.get(t, 0.0)), *args), dtype=complex).ravel()
     if np.all(np.isfinite(closed)) and np.all(np.abs(closed.imag) <= 1e-9 * np.maximum(1, np.abs(closed.real))):
         values_closed = closed.real
-        numeric = _numeric(f_lin, args, names, react_syms, n_acc)
+        numeric = _numeric(f_lin, full.get(t, 0.0), args, names, react_syms, n_acc)
         if numeric is None:
             return dict(zip(names, map(float, values_closed)))
         scale = max(1.0, float(np.abs(numeric).max()))
         if np.abs(values_closed - numeric).max() <= 1e-6 * scale:
             return dict(zip(names, map(float, values_closed)))
         return dict(zip(names, map(float, numeric)))      # the closed form lost its digits here
-    numeric = _numeric(f_lin, args, names, react_syms, n_acc)
+    numeric = _numeric(f_lin, full.get(t, 0.0), args, names, react_syms, n_acc)
     if numeric is None:
         raise RigidkinError("the reactions are not determined at this state (the balance equations are "
                             "singular there).")
     return dict(zip(names, map(float, numeric)))
 
 
-def _numeric(f_lin, args, names, react_syms, n_acc):
+def _numeric(f_lin, time, args, names, react_syms, n_acc):
     """The reactions from the balance equations solved numerically (None where they are singular)."""
     with np.errstate(all="ignore"):
-        Ab = np.array(f_lin(0.0, *args), dtype=float)
+        Ab = np.array(f_lin(float(time), *args), dtype=float)
     if not np.all(np.isfinite(Ab)):
         return None
     A, b = Ab[:, :-1], -Ab[:, -1]
@@ -153,7 +154,7 @@ def accelerations_at(solution, state: Mapping, values: Mapping | None = None, re
         _CACHE[key] = hit
     syms, back, fn = hit[1]
     with np.errstate(all="ignore"):
-        Mf = np.array(fn(0.0, *_arguments(syms, back, full, params)), dtype=float)
+        Mf = np.array(fn(float(full.get(t, 0.0)), *_arguments(syms, back, full, params)), dtype=float)
     n = Mf.shape[0]
     if n == 0:
         return {}

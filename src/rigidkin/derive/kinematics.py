@@ -26,6 +26,7 @@ from ..base.errors import ConstraintError
 from ..base.linear import linear_form
 from ..base.trace import Trace
 from ..model.speeds import is_quasi, speeds_of
+from .prescribed import refuse_driven_against_ground
 
 if TYPE_CHECKING:
     import numpy as np
@@ -304,6 +305,7 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
         raise ConstraintError("a constraint row involves accelerations.", where=relating[0].constraint)
     rng = random.Random(11)
     numA = _numeric_matrix(A, rng)
+    refuse_driven_against_ground(relating, exprs, numA)
     rank = np.linalg.matrix_rank(numA, tol=1e-9)
     if rank < len(relating):
         # find the rows that add nothing

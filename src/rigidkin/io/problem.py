@@ -380,7 +380,8 @@ class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
         path = ("bodies", name)
         cls = SHAPES[b.shape]
         kwargs = {}
-        data = b.model_dump(exclude={"shape", "frame", "at", "description", "centre_name"})
+        data = b.model_dump(exclude={"shape", "frame", "at", "description", "centre_name", "driven", "drive_torque",
+                                     "drive_force", "drive_joint", "drive_carrier"})
         for key, v in data.items():
             if v is None:
                 if self._required_dimension(cls, key):
@@ -396,6 +397,15 @@ class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
         shape = self.call(path, cls, **kwargs)
         frame = self.frame(b.frame, path + ("frame",))
         at = self.point(b.at, path + ("at",))
+        if b.driven:        # moved by the laws of t in its frame and point, with the effort that drives it
+            joint = self.point(b.drive_joint, path + ("drive_joint",)) if b.drive_joint else None
+            carrier = self.body(b.drive_carrier, path + ("drive_carrier",)) if b.drive_carrier else None
+            self.call(path, self.s.drive, name, frame, at, shape, torque=b.drive_torque, force=b.drive_force,
+                      description=b.description, joint=joint, carrier=carrier)
+            return
+        if b.drive_torque or b.drive_force or b.drive_joint or b.drive_carrier:
+            raise InputError("drive_torque, drive_force, drive_joint and drive_carrier are for a driven body.",
+                             where=self.where(*path), hint="Add driven = true, or remove them.")
         self.call(path, self.s.body, name, shape, frame, at, b.description, b.centre_name)
 
     @staticmethod

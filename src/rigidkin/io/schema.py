@@ -112,7 +112,9 @@ def _body_model(key: str, cls):
     return create_model(
         f"Body_{key}", __base__=Strict,
         shape=(Literal[key], ...), frame=(Name, ...), at=(Name, ...), description=(str, ""),
-        centre_name=(Name | None, None), **fields)
+        centre_name=(Name | None, None), driven=(bool, False), drive_torque=(Name | None, None),
+        drive_force=(Name | None, None), drive_joint=(Name | None, None),
+        drive_carrier=(Name | None, None), **fields)
 
 
 BODY_MODELS = {key: _body_model(key, cls) for key, cls in SHAPES.items()}

@@ -14,13 +14,16 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 import sympy as sp
-from sympy.physics.vector import Vector
+from sympy.physics.vector import Vector, dynamicsymbols
 
+from ..base.algebra import functions_of_time
 from ..base.errors import ModelError
 from .friction3d import SlidingFriction3D, slip_validity
 from .friction_kinds import ROLLING, SMOOTH, Coulomb  # noqa: F401  (public here too: constraints.Coulomb ...)
 from .loads import Application, SlidingFriction
 from .points import Point
+
+kin_t = dynamicsymbols._t
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,6 +78,20 @@ def _two_sided(symbol, direction, kind, body_a, point_a, body_b, point_b, label,
     return tuple(apps)
 
 
+def by_law(kin, obj) -> bool:
+    """True for a point not fixed in a body, or a frame, that moves by a given law of t alone: its position
+    (orientation) involves t and no coordinate — a driven support, a shaft turned at Ω."""
+    if isinstance(obj, Point):
+        if obj.body is not None or obj.parent is None:
+            return False
+        exprs = list(kin.position(obj).to_matrix(kin.F.ref))
+    else:
+        if obj.parent is None:
+            return False
+        exprs = list(obj.ref.dcm(kin.F.ref))
+    return any(sp.sympify(e).has(kin_t) for e in exprs) and not any(functions_of_time(e) for e in exprs)
+
+
 @dataclass(eq=False)
 class Pin(Constraint):
     """A point of ``body_a`` held at a point of ``body_b`` (or fixed in the ground): a pin / fixed point.
@@ -109,8 +126,8 @@ class Pin(Constraint):
         pb = self.point_b or self.point
         va = kin.material_velocity(self.body_a, kin.position(self.point))
         vb = kin.material_velocity(self.body_b, kin.position(pb)) if self.body_b is not None else Vector(0)
-        if self.body_b is None and pb is not self.point:
-            vb = kin.velocity(pb)
+        if self.body_b is None and (pb is not self.point or by_law(kin, pb)):
+            vb = kin.velocity(pb)       # a point of the ground, or one that moves by a law of t (a driven support)
         rel = va - vb
         n = 2 if kin.planar else 3
         out = []
@@ -123,6 +140,8 @@ class Pin(Constraint):
             a_frame, a_axis = kin.system.axis_of(self.axis, where=f"pin {self.name}")
             others = [c for c in "xyz" if c != a_axis]
             w = kin.omega_of(self.body_a) - (kin.omega_of(self.body_b) if self.body_b else Vector(0))
+            if self.body_b is None and by_law(kin, a_frame):
+                w = w - kin.omega(a_frame)     # the hinge's axis turns by a law of t: the shaft it is on turns so
             for c in others:
                 e = a_frame.unit(c)
                 sym = sp.Symbol(f"M_{self.name}{c}", real=True)

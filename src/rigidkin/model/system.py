@@ -29,6 +29,7 @@ from .shapes import Shape
 from .speeds import angular_group, quasi_coordinate, quaternion_dcm, quaternion_group
 from .surfaces import Circle, Line
 from .system_constraints import ConstraintMethods
+from .system_drive import DriveMethods
 from .system_loads import LoadMethods
 from .values import _expr, _friction
 
@@ -46,7 +47,7 @@ def _latex_basis(basis):
     return tuple(out)
 
 
-class System(ConstraintMethods, LoadMethods):
+class System(ConstraintMethods, LoadMethods, DriveMethods):
     """A system of rigid bodies: build it with the methods below, then call :meth:`solve`.
 
     >>> import rigidkin as rk
@@ -132,8 +133,8 @@ class System(ConstraintMethods, LoadMethods):
                    initial=None, rate=None, description: str = "", positive: bool = False) -> sp.Function:
         """Declare a generalised coordinate; returns the dynamicsymbol q(t).
 
-        ``sense`` says where it is measured from and which way is positive.  Coordinates declared
-        first are kept as independent; later ones are eliminated first by the constraints.
+        ``sense`` says where it is measured from and which way is positive.  Coordinates declared first are
+        kept as independent; later ones are eliminated first by the constraints.
         """
         self._claim(name, "coordinate")
         if kind not in ("angle", "length", "other"):
@@ -474,11 +475,10 @@ class System(ConstraintMethods, LoadMethods):
               independent=None, substitutions: dict | None = None, integrate: bool = True):
         """Derive the equations of motion and reactions; returns a :class:`rigidkin.Solution`.
 
-        ``mode`` maps contact names to ``"slip"``, ``"stick"`` or ``"open"``;
-        ``independent`` lists the coordinates to keep (others are eliminated by the constraints);
-        ``substitutions`` replaces parameters (e.g. ``{mu: 0}`` on a frictionless stretch);
-        ``integrate=False`` keeps the coordinates whose relation comes from integrating a rate relation
-        (a constant of integration) as coordinates of their own, as a simulation entering the mode needs.
+        ``mode`` maps contact names to ``"slip"``, ``"stick"`` or ``"open"``; ``independent`` lists the coordinates to
+        keep (others are eliminated by the constraints); ``substitutions`` replaces parameters (e.g. ``{mu: 0}`` on a
+        frictionless stretch); ``integrate=False`` keeps the coordinates whose relation comes from integrating a rate
+        relation (a constant of integration) as coordinates of their own, as a simulation entering the mode needs.
         """
         from ..derive.laws import solve_with
 

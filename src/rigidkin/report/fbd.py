@@ -33,6 +33,7 @@ from .notation import _vector_terms, latex  # noqa: E402
 
 APPLIED = "#1f5fbf"
 REACTION = "#c0392b"
+DRIVE = "#7d3c98"        # the efforts a prescribed motion needs (a driven body's drive force and torque)
 
 _PARSER = MathTextParser("path")
 
@@ -199,7 +200,8 @@ def _draw_body_fbd(ax, geom: Geometry, setup, body, q, out: list) -> None:
             extra[app.reaction] = 1.0
         label = _magnitude_label(app, setup)
         reaction = app.reaction is not None
-        colour = REACTION if reaction else APPLIED
+        driven = getattr(setup.system.constraints.get(app.source), "kind", "") == "drive"
+        colour = DRIVE if driven else REACTION if reaction else APPLIED
         v = _direction(geom, app, q, extra)
         if app.is_torque:
             sense = 1.0 if v is None or v[2] >= 0 else -1.0
@@ -271,8 +273,11 @@ def free_body_diagram(obj, bodies=None, values=None, mode=None, parameters=None)
         _draw_body_fbd(ax, geom, setup, b, q, out)
     handles = [patches.Patch(color=APPLIED, label="applied load (starts at its point)"),
                patches.Patch(color=REACTION, label="reaction, unknown (ends at its point)")]
+    if any(getattr(system.constraints.get(d.source), "kind", "") == "drive" for d in out):
+        handles.append(patches.Patch(color=DRIVE, label="effort needed to drive a prescribed motion"))
     fig.legend(handles=handles, loc="lower center", ncol=2 if cols > 1 else 1, fontsize=9, frameon=False)
     shown = ", ".join(f"{plain_text(k)} = {v:.4g}" for k, v in q.items() if k != geom_t or v)
     fig.suptitle(f"Free-body diagrams at {shown}", fontsize=10, color="#444")
-    fig.tight_layout(rect=(0, 0.05 if cols > 1 else 0.09, 1, 0.95))
+    low = (0.05 if cols > 1 else 0.09) * (1.6 if len(handles) > 2 else 1.0)
+    fig.tight_layout(rect=(0, low, 1, 0.95))
     return FreeBodyDiagram(fig, out, q, geom.assumed)
