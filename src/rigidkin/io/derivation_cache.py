@@ -26,35 +26,28 @@ from __future__ import annotations
 import contextlib
 import functools
 import hashlib
-import hmac
 import os
 import sys
 from pathlib import Path
 
 from .. import __version__, examples
+from ..base import cache_folder, signing
 from ..base.cache_folder import cache_dir, disabled_by_env, folder  # noqa: F401  (public here too)
 from ..base.private_files import regular_and_ours, write_private
+from ..base.signing import SECRET_NAME
 from ..base.trace import Trace
 
 MAGIC = b"rigidkin-derivation-2\n"
-SECRET_NAME = "secret.key"
 MAX_ENTRY = 256 * 1024 * 1024            # bytes: a larger derivation is not kept
 MAX_ENTRIES = 200                         # the oldest beyond these are removed when one is written
 _CACHED = type(functools.cache(len))              # a memoized function (functools.cache) in what is kept
 
 
-def secret(where: Path) -> bytes:
-    """The folder's HMAC key: 32 random bytes, 0600; made anew (voiding every entry) when not exactly that."""
-    path = where / SECRET_NAME
-    if regular_and_ours(path, 0o077):
-        try:
-            key = path.read_bytes()
-        except OSError:
-            key = b""
-        if len(key) == 32:
-            return key
-    key = os.urandom(32)
-    write_private(path, key)
+def secret(where: Path) -> bytes | None:
+    """The folder's HMAC key (:func:`rigidkin.base.signing.secret`); None when it cannot be read or made."""
+    key = signing.secret(where)
+    if key is None:
+        cache_folder.fault(where / SECRET_NAME, "the key of the cache cannot be read or written")
     return key
 
 
@@ -113,7 +106,7 @@ def key_of(problem: str) -> str | None:
 
 
 def _mac(secret_key: bytes, key: str, payload: bytes) -> bytes:
-    return hmac.new(secret_key, key.encode() + b"\0" + payload, hashlib.sha256).hexdigest().encode()
+    return signing.mac(secret_key, key, payload)
 
 
 def _read_signed(path: Path, key: str) -> bytes | None:
@@ -131,7 +124,8 @@ def _read_signed(path: Path, key: str) -> bytes | None:
             ok = False
     head = len(MAGIC) + 64 + 1
     ok = ok and data.startswith(MAGIC) and len(data) > head and data[head - 1:head] == b"\n"
-    if ok and hmac.compare_digest(data[len(MAGIC):head - 1], _mac(secret(path.parent), key, data[head:])):
+    secret_key = secret(path.parent) if ok else None
+    if secret_key is not None and signing.matches(secret_key, key, data[head:], data[len(MAGIC):head - 1]):
         return data[head:]
     _remove(path)
     return None
@@ -141,9 +135,13 @@ def _write_signed(path: Path, key: str, payload: bytes) -> bool:
     """Write ``payload`` with its MAC atomically (mode 0600); False when it cannot be written."""
     if len(payload) > MAX_ENTRY:
         return False
+    secret_key = secret(path.parent)
+    if secret_key is None:
+        return False
     try:
-        write_private(path, MAGIC + _mac(secret(path.parent), key, payload) + b"\n" + payload)
-    except OSError:
+        write_private(path, MAGIC + _mac(secret_key, key, payload) + b"\n" + payload)
+    except OSError as exc:
+        cache_folder.fault(path, exc.strerror or str(exc))
         return False
     _prune(path.parent)
     return True
