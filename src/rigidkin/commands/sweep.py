@@ -20,7 +20,7 @@ from ..base.textsafe import terminal_safe
 from ..base.units import MAX_MAGNITUDE
 from ..io.derivation_cache import read_kept, write_kept
 from ..io.load import value as quantity
-from .common import guarded, open_problem
+from .common import guarded, open_problem, source_of
 from .deadline import set_step
 from .options import add_no_cache, add_timeout, chunk, end_time, threads, tolerance, workers
 from .simulate import _pairs as pairs
@@ -166,7 +166,7 @@ def _from_record(args, vary, sets, initial, mode):
     nothing derived); None: take the full route."""
     from ..numeric.sweeps.sweep_record import SUFFIX, run
 
-    rec = read_kept(args.problem, _record_options(args, mode), SUFFIX, use=not args.no_cache)
+    rec = read_kept(source_of(args), _record_options(args, mode), SUFFIX, use=not args.no_cache)
     if rec is None:
         return None
     return run(rec, vary, sets, initial, args.t_end, args.rtol, args.atol, args.threads, args.chunk)
@@ -175,7 +175,7 @@ def _from_record(args, vary, sets, initial, mode):
 def _keep_record(args, mode, record: dict) -> None:
     from ..numeric.sweeps.sweep_record import SUFFIX
 
-    write_kept(args.problem, _record_options(args, mode), SUFFIX, record, use=not args.no_cache)
+    write_kept(source_of(args), _record_options(args, mode), SUFFIX, record, use=not args.no_cache)
 
 
 def _status_counts(status) -> dict[str, int]:

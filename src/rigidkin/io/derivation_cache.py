@@ -6,7 +6,8 @@ answers to its questions.  ``solve``, ``check``, ``simulate``, ``report`` and ``
 read one entry and add to it what they derive; the numbers given on the command line (``--set``,
 ``--initial``) are applied after the derivation, and modes and laws are looked up inside the entry.
 
-Key: the SHA-256 of the problem file's bytes and its resolved path (a bundled example: its name and
+Key: the SHA-256 of the problem file's bytes — exactly the bytes parsed: a command reads its file once
+(:class:`rigidkin.io.load.Source`) — and its resolved path (a bundled example: its name and
 file), rigidkin's version and a fingerprint of its code (size and time of every module), Python's and
 sympy's versions.  A changed file, rigidkin or sympy gives a new entry.
 
@@ -30,12 +31,14 @@ import os
 import sys
 from pathlib import Path
 
-from .. import __version__, examples
+from .. import __version__
 from ..base import cache_folder, signing
 from ..base.cache_folder import cache_dir, disabled_by_env, folder  # noqa: F401  (public here too)
+from ..base.errors import RigidkinError
 from ..base.private_files import regular_and_ours, write_private
 from ..base.signing import SECRET_NAME
 from ..base.trace import Trace
+from .load import read_source
 
 MAGIC = b"rigidkin-derivation-2\n"
 MAX_ENTRY = 256 * 1024 * 1024            # bytes: a larger derivation is not kept
@@ -74,26 +77,19 @@ def _code_fingerprint() -> bytes:
     return h.digest()
 
 
-def problem_source(problem: str) -> tuple[str, bytes] | None:
-    """(resolved path or example name, bytes) of a problem as ``load_system`` reads it; None: not cacheable."""
-
-    path = Path(problem)
+def problem_source(problem) -> tuple[str, bytes] | None:
+    """(resolved path or example name, bytes) of a problem (a name, a path, or a
+    :class:`rigidkin.io.load.Source` already read); None: not cacheable (it cannot be read)."""
     try:
-        if path.suffix == ".toml" or path.exists():
-            if not path.is_file():
-                return None
-            return str(path.resolve()), path.read_bytes()
-        if problem in examples.names():
-            toml = examples.HERE / f"{problem}.toml"
-            if toml.exists():
-                return str(toml.resolve()), toml.read_bytes()
-            return f"example:{problem}", b""            # a Python example: its code is in the fingerprint
-    except OSError:
+        source = read_source(problem)
+    except RigidkinError:
         return None
-    return None
+    return source.name, source.data
 
 
-def key_of(problem: str) -> str | None:
+def key_of(problem) -> str | None:
+    """The entry's key: made from exactly the bytes that are parsed (pass the command's
+    :class:`rigidkin.io.load.Source`; a name or path is read now)."""
     source = problem_source(problem)
     if source is None:
         return None
@@ -301,8 +297,9 @@ class CachedProblem:
     parsed file, None for a Python example) and ``answers`` (None until answered); ``save()`` stores
     whatever was derived since."""
 
-    def __init__(self, problem: str, load, use: bool = True):
-        """``load()`` builds (system, spec) from the file when the cache has no entry for it."""
+    def __init__(self, problem, load, use: bool = True):
+        """``problem`` is best the command's :class:`rigidkin.io.load.Source` (the bytes read once: the key is
+        made from them and ``load()`` builds (system, spec) from them when the cache has no entry)."""
         self.problem = problem
         self.answers = None
         self.hit = False

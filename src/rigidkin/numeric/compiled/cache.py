@@ -16,7 +16,8 @@ built from, the compiler and the flags; beside it ``rk_<digest>.c`` (the source)
 The verified bytes are copied into a private folder of this process and loaded from there, so the file
 checked is the file loaded.  Anything else is not loaded: the library is rebuilt (in the cache when the
 cache folder is ours, else in a private temporary folder of this process).  A cache folder that cannot be
-used (read-only, full, removed while running) is said in one warning and the library built privately.  The compiler runs on our own generated source only, with
+used (read-only, full, removed while running) is said in one warning and the library built privately.
+The compiler runs on our own generated source only, with
 a fixed argument list and no shell.
 """
 
@@ -34,9 +35,9 @@ import threading
 import warnings
 from pathlib import Path
 
-from ...base.errors import RigidkinError
 from ...base import signing
 from ...base.cache_folder import fault
+from ...base.errors import RigidkinError
 from ...base.private_files import folder_problem, regular_and_ours, unsafe_ancestor, write_private
 
 
