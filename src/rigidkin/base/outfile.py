@@ -135,14 +135,14 @@ def check_outputs(outputs: dict, inputs=()) -> None:
         ident = identity(path)
         if ident in ins:
             raise OutputError(f"{option} {path} is {ins[ident]}, an input of this command: writing there would "
-                              "replace it.", where=option, hint="Write the output to another file.")
+                              "replace it. Nothing was run.", hint="Write the output to another file.")
         try:
             shared = stat.S_ISCHR(os.stat(path).st_mode)
         except OSError:
             shared = False
         if ident in seen and not shared:
-            raise OutputError(f"{option} {path} and {seen[ident]} are the same file: one would replace the other.",
-                              where=option, hint="Give each output its own file name.")
+            raise OutputError(f"{option} {path} and {seen[ident]} are the same file: one would replace the other. "
+                              "Nothing was run.", hint="Give each output its own file name.")
         seen[ident] = f"{option} {path}"
 
 

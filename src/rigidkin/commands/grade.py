@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import json
 
-from ..base.outfile import check_target, writing
+from ..base.outfile import check_outputs, check_target, writing
 from .common import guarded, json_safe, progress
 from .options import add_timeout
 
@@ -32,8 +32,11 @@ def run(args) -> int:
 
     if args.output:
         check_target(args.output, "the graded worksheet")
+        check_outputs({"-o": args.output}, [args.worksheet])
     with progress(f"Reading {args.worksheet}"):
         ws = guarded(args, load_worksheet, args.worksheet)
+    if args.output:                                     # nor over the problem file the worksheet names
+        check_outputs({"-o": args.output}, [args.worksheet, ws.problem_ref])
     with progress("Deriving the problem and grading each step"):
         report = guarded(args, grade, ws)
     if args.format == "json":

@@ -8,11 +8,11 @@ inline figures, an inline animation player); Markdown and LaTeX put their figure
 from __future__ import annotations
 
 from ..base.errors import InputError, RigidkinError
-from ..base.outfile import OutputError, check_target, writing
+from ..base.outfile import OutputError, check_outputs, check_target, writing
 from ..base.textsafe import terminal_safe
 from ..io.load import value
 from ..report.blocks import Animation
-from .common import guarded, open_problem, progress, with_file
+from .common import guarded, open_problem, problem_inputs, progress, with_file
 from .options import add_no_cache, add_timeout, end_time
 from .solve import answer_questions
 
@@ -69,6 +69,7 @@ def run(args) -> int:
     check_target(args.output, "the report")
     if args.gif:
         check_target(args.gif, "the animation", (".gif",))
+    check_outputs({"-o": args.output, "--gif": args.gif}, problem_inputs(args))
     if args.gif and args.simulate is None:
         raise InputError("--gif needs a simulation to animate.", where="report --gif",
                          hint="Add --simulate T (seconds).")

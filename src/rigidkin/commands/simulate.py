@@ -16,9 +16,9 @@ import warnings
 
 from ..base.errors import InputError
 from ..base.limits import check_memory, history_bytes
-from ..base.outfile import check_target
+from ..base.outfile import check_outputs, check_target
 from ..base.textsafe import terminal_safe
-from .common import guarded, json_safe, open_problem
+from .common import guarded, json_safe, open_problem, problem_inputs
 from .deadline import set_step
 from .options import EXIT_STOPPED, add_no_cache, add_timeout, end_time, points, start_time, tolerance
 
@@ -145,6 +145,7 @@ def run(args) -> int:
         check_target(args.csv, "the histories")
     if args.plot:
         check_target(args.plot, "the figure", figure_formats())
+    check_outputs({"--csv": args.csv, "--plot": args.plot}, problem_inputs(args))
     if not args.t_end > args.t_start:
         raise InputError(f"the end time {args.t_end:g} s is not after the start time {args.t_start:g} s.",
                          where="--t-end", hint="Give --t-end greater than --t-start.")

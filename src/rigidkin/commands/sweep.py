@@ -15,12 +15,12 @@ import sys
 import time
 
 from ..base.errors import InputError
-from ..base.outfile import check_target
+from ..base.outfile import check_outputs, check_target
 from ..base.textsafe import terminal_safe
 from ..base.units import MAX_MAGNITUDE
 from ..io.derivation_cache import read_kept, write_kept
 from ..io.load import value as quantity
-from .common import guarded, open_problem, source_of
+from .common import guarded, open_problem, problem_inputs, source_of
 from .deadline import set_step
 from .options import add_no_cache, add_timeout, chunk, end_time, threads, tolerance, workers
 from .simulate import _pairs as pairs
@@ -110,6 +110,7 @@ def run(args) -> int:
         from ..numeric.figure import figure_formats
 
         check_target(args.plot, "the figure", figure_formats())
+    check_outputs({"-o": args.output, "--plot": args.plot}, problem_inputs(args))
     vary = {name: parse_axis(v, f"--param {name}") for name, v in _pairs(args.param, "--param").items()}
     sets, initial, mode = _pairs(args.set, "--set"), _pairs(args.initial, "--initial"), _pairs(args.mode, "--mode")
     scheduler = args.scheduler or ("local" if args.workers else None)

@@ -11,9 +11,9 @@ from __future__ import annotations
 import json
 
 from ..base.errors import InputError
-from ..base.outfile import check_target, writing
+from ..base.outfile import check_outputs, check_target, writing
 from ..base.textsafe import terminal_safe
-from .common import guarded, json_safe, progress
+from .common import guarded, json_safe, problem_inputs, progress
 from .options import add_timeout
 
 
@@ -42,6 +42,7 @@ def run(args) -> int:
         raise InputError("--tolerance is a relative tolerance between 0 and 1.", where="--tolerance")
     if args.output:
         check_target(args.output, "the Moodle XML", (".xml",))
+        check_outputs({"-o": args.output}, problem_inputs(args))
     vary = parse_vary(args.vary)
     with progress(f"Solving {args.count} variants of {args.problem}"):
         ps = guarded(args, make_set, args.problem, args.count, args.seed, vary, args.tolerance)

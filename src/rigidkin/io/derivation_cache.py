@@ -38,7 +38,7 @@ from ..base.errors import RigidkinError
 from ..base.private_files import regular_and_ours, write_private
 from ..base.signing import SECRET_NAME
 from ..base.trace import Trace
-from .load import read_source
+from .source import read_source
 
 MAGIC = b"rigidkin-derivation-2\n"
 MAX_ENTRY = 256 * 1024 * 1024            # bytes: a larger derivation is not kept

@@ -16,9 +16,9 @@ from pydantic import BaseModel, ValidationError
 from ..base.errors import InputError
 from ..model.shapes import SHAPES
 from . import schema as S
-from .load import MAX_FILE_BYTES, read_bytes  # noqa: F401  (MAX_FILE_BYTES public here too)
 from .locate import Locator
 from .prescan import check_tree, prescan
+from .source import MAX_FILE_BYTES, read_bytes  # noqa: F401  (MAX_FILE_BYTES public here too)
 
 
 # reading ------------------------------------------------------------------------------------------------
