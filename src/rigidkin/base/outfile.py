@@ -146,6 +146,18 @@ def check_outputs(outputs: dict, inputs=()) -> None:
         seen[ident] = f"{option} {path}"
 
 
+def unique_columns(pairs, reserved=()) -> dict:
+    """The (name, values) ``pairs`` as a dict, refusing a name that appears twice or is one of ``reserved``
+    (a column of the writer's own): no column of an output may silently replace another."""
+    out: dict = {}
+    for name, values in pairs:
+        if name in out or name in reserved:
+            raise OutputError(f"two columns of the output would be named '{name}': one would be lost.",
+                              hint="Rename the parameter, coordinate or reaction of that name in the problem.")
+        out[name] = values
+    return out
+
+
 @contextlib.contextmanager
 def writing(path, what: str, binary: bool = False, suffixes: tuple[str, ...] | None = None):
     """A file object for ``path``: text (UTF-8, no newline translation) or ``binary``.
