@@ -25,7 +25,6 @@ from .figure import plot_result
 from .rhs import SimulationError
 from .state import StateLayout, rate_name
 
-
 #: The prefix of the energy columns (kinetic T, potential U, E = T + U, work W), apart from the user's names.
 ENERGY = "energy: "
 
