@@ -21,6 +21,7 @@ from ..base.textsafe import terminal_safe
 from .common import guarded, json_safe, open_problem, problem_inputs
 from .deadline import set_step
 from .options import EXIT_STOPPED, add_no_cache, add_timeout, end_time, points, start_time, tolerance
+from .quantities import checked_values, units_of
 
 
 def register(sub) -> None:
@@ -155,6 +156,7 @@ def run(args) -> int:
     restitution = _restitution(args.restitution)
     derived = guarded(args, open_problem, args)
     system = derived.system
+    initial = checked_values(initial, units_of(system), "--initial")
     check_points(system, args.points)
     progress = _Progress(sys.stderr.isatty() and not args.json)
     set_step(f"Simulating to t = {args.t_end:g} s")
