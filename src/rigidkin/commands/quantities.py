@@ -8,8 +8,10 @@ naming the option.  A bare number is SI.  The values come back in SI, as numbers
 
 from __future__ import annotations
 
+import math
+
 from ..base.errors import InputError
-from ..base.units import parse_quantity, unit_dimension
+from ..base.units import MAX_MAGNITUDE, parse_quantity, unit_dimension
 from ..io.load import value as plain_value
 
 _KIND_UNIT = {"angle": "rad", "length": "m"}
@@ -30,10 +32,15 @@ def units_of(system) -> dict[str, str | None]:
 
 def checked(text: str, unit: str | None, where: str) -> float:
     """``text`` in SI, refused unless it is finite and (with ``unit``) of ``unit``'s dimension."""
+    try:
+        v = float(text)                          # a bare number: SI, no unit registry loaded
+    except (TypeError, ValueError):
+        v = None
+    if v is not None and math.isfinite(v) and abs(v) <= MAX_MAGNITUDE:
+        return v
     if unit is None:
-        return plain_value(text, where)
-    v = parse_quantity(text, None, where, dimension=unit_dimension(unit, where))
-    return v
+        return plain_value(text, where)      # any dimension: read as SI
+    return parse_quantity(text, None, where, dimension=unit_dimension(unit, where))
 
 
 def checked_values(pairs: dict, units: dict, what: str) -> dict:
