@@ -34,12 +34,21 @@ _FAULTS: set[str] = set()
 
 def fault(where, reason: str) -> None:
     """A cache that cannot be used (read-only, full, vanished, a folder where a file should be): one line
-    on stderr (a RuntimeWarning, once per process) and the command runs on without it."""
-    if "fault" in _FAULTS:
+    on stderr (a RuntimeWarning, once per command) and the command runs on without it."""
+    say_once(f"the cache at {where} cannot be used ({reason}); running without the cache.", "fault")
+
+
+def new_run() -> None:
+    """A new command starts: its first cache fault is said again."""
+    _FAULTS.clear()
+
+
+def say_once(message: str, kind: str | None = None) -> None:
+    """A RuntimeWarning about the cache, said once per command (:func:`new_run`; per ``kind``, else per message)."""
+    if (kind or message) in _FAULTS:
         return
-    _FAULTS.add("fault")
-    warnings.warn(f"the cache at {where} cannot be used ({reason}); running without the cache.",
-                  RuntimeWarning, stacklevel=3)
+    _FAULTS.add(kind or message)
+    warnings.warn(message, RuntimeWarning, stacklevel=3)
 
 
 def folder() -> Path | None:
@@ -61,7 +70,9 @@ def folder() -> Path | None:
         fault(base, exc.strerror or str(exc))
         return None
     if why:
-        warnings.warn(f"{why}, so the derivation cache is not used (set RIGIDKIN_CACHE to a folder of your own).",
-                      RuntimeWarning, stacklevel=2)
+        if why.endswith("is not a folder"):         # a file where the folder should be: a fault, not a threat
+            fault(why.removesuffix(" is not a folder"), "it is not a folder")
+        else:
+            say_once(f"{why}, so the derivation cache is not used (set RIGIDKIN_CACHE to a folder of your own).")
         return None
     return where

@@ -28,6 +28,7 @@ import hashlib
 import hmac
 import os
 import shutil
+import stat
 import subprocess
 import sys
 import tempfile
@@ -96,6 +97,9 @@ def checked_folder() -> Path:
         except OSError as exc:
             fault(folder, exc.strerror or str(exc))
             return private_folder()
+    if not stat.S_ISDIR(st.st_mode):                  # a file where the folder should be: a fault, not a threat
+        fault(folder, "it is not a folder")
+        return private_folder()
     why = folder_problem(folder, st) or unsafe_ancestor(folder)
     if why:
         if explicit:
@@ -209,6 +213,8 @@ def build(source: str, cdef: str, error=CacheError):
         if lib is None:
             lib = _compile(cc, flag_list, source, folder, error)
             key = signing.secret(folder) if folder != private_folder() else None
+            if key is None and folder != private_folder():
+                fault(folder / signing.SECRET_NAME, "the key of the cache cannot be read or written")
             if key is not None:
                 try:
                     for ext, data in ((".c", source.encode()), (".so", lib),
