@@ -1,17 +1,19 @@
 """Temporary files removed however the process ends: normally, on an error, on Ctrl-C, SIGTERM or SIGHUP.
 
 Every temporary file rigidkin writes beside an output or in its cache (``.rigidkin-XXXX.part``,
-``.tmp-XXXX``) is registered here while it exists.  An error or Ctrl-C (KeyboardInterrupt) removes it
-through the writer's ``finally``; SIGTERM and SIGHUP, whose default action ends the process at once, get
-a handler that removes every registered file and then ends the process by the same signal (so the exit
-status is the signal's, as before).  A handler the program installed itself is called after the cleanup;
-an ignored signal stays ignored.
+``.tmp-XXXX``), and every temporary folder (a compiler's build folder, the private folder of compiled
+libraries, pint's staged definitions), is registered here while it exists.  An error or Ctrl-C
+(KeyboardInterrupt) removes it through the writer's ``finally``; SIGTERM and SIGHUP, whose default
+action ends the process at once, get a handler that removes everything registered and then ends the
+process by the same signal (so the exit status is the signal's, as before).  A handler the program
+installed itself is called after the cleanup; an ignored signal stays ignored.
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
+import shutil
 import signal
 import threading
 
@@ -21,15 +23,18 @@ _PREVIOUS: dict[int, object] = {}
 SIGNALS = tuple(getattr(signal, n) for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n))
 
 
-def register(path: str) -> None:
-    """``path`` is a temporary file of ours: removed if a signal ends the process before :func:`release`."""
+def register(path) -> None:
+    """``path`` is a temporary file (or folder) of ours: removed if a signal ends the process before
+    :func:`release`."""
+    path = str(path)
     with _LOCK:
         _LIVE.add(path)
     install()
 
 
-def release(path: str) -> None:
+def release(path) -> None:
     """``path`` was renamed into place or removed: nothing to clean up any more."""
+    path = str(path)
     with _LOCK:
         _LIVE.discard(path)
 
@@ -46,6 +51,9 @@ def remove_all() -> None:
         paths = list(_LIVE)
         _LIVE.clear()
     for p in paths:
+        if os.path.isdir(p) and not os.path.islink(p):
+            shutil.rmtree(p, ignore_errors=True)
+            continue
         with contextlib.suppress(OSError):
             os.unlink(p)
 

@@ -19,7 +19,7 @@ import tempfile
 import warnings
 from pathlib import Path
 
-from . import cache_folder, signing
+from . import cache_folder, signing, tempfiles
 from .private_files import folder_problem, regular_and_ours, write_private
 
 MANIFEST = "manifest"
@@ -80,6 +80,7 @@ def staged():
         return
     listed = _manifest(folder, key)
     tmp = Path(tempfile.mkdtemp(prefix="rigidkin-units-"))
+    tempfiles.register(tmp)
     try:
         given = {}
         for name, digest in listed.items():
@@ -97,6 +98,7 @@ def staged():
         _keep(folder, key, tmp, given)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+        tempfiles.release(tmp)
 
 
 def _keep(folder: Path, key: bytes, tmp: Path, given: dict) -> None:

@@ -24,6 +24,7 @@ a fixed argument list and no shell.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import hashlib
 import hmac
 import os
@@ -36,7 +37,7 @@ import threading
 import warnings
 from pathlib import Path
 
-from ...base import signing
+from ...base import signing, tempfiles
 from ...base.cache_folder import fault
 from ...base.errors import RigidkinError
 from ...base.private_files import folder_problem, regular_and_ours, unsafe_ancestor, write_private
@@ -121,6 +122,7 @@ def private_folder() -> Path:
     """A folder of this process only (mode 0700), removed at exit."""
     if not _PRIVATE:
         p = Path(tempfile.mkdtemp(prefix="rigidkin-"))
+        tempfiles.register(p)                       # removed on SIGTERM and SIGHUP too
         _PRIVATE.append(p)
         atexit.register(shutil.rmtree, p, True)
     return _PRIVATE[0]
@@ -181,7 +183,7 @@ def _compile(cc: str, flag_list: list[str], source: str, folder: Path, error) ->
 
 
 def _compile_in(cc: str, flag_list: list[str], source: str, folder: Path, error) -> bytes:
-    with tempfile.TemporaryDirectory(dir=folder, prefix=".build-") as tmp:
+    with tempfile.TemporaryDirectory(dir=folder, prefix=".build-") as tmp, _registered(tmp):
         src = Path(tmp) / "model.c"
         src.write_text(source)
         out = Path(tmp) / "model.so"
@@ -193,6 +195,15 @@ def _compile_in(cc: str, flag_list: list[str], source: str, folder: Path, error)
                         hint="This is a bug in rigidkin's code generator; the numpy backend still works "
                              "(backend='numpy').")
         return out.read_bytes()
+
+
+@contextlib.contextmanager
+def _registered(path):
+    tempfiles.register(path)
+    try:
+        yield
+    finally:
+        tempfiles.release(path)
 
 
 def build(source: str, cdef: str, error=CacheError):
