@@ -102,12 +102,14 @@ def through(path) -> bool:
 
 
 def _standard_fd(p: Path) -> int | None:
-    """1 or 2 when ``p`` names this process's standard output or error (written on the descriptor itself)."""
+    """The descriptor when ``p`` names one of this process's open files (``/dev/stdout``, ``/dev/fd/3``,
+    ``/proc/self/fd/1``): written on the descriptor itself, at its offset, appending if it appends."""
     for h in _hops(p):
         if h in _STANDARD:
             return _STANDARD[h]
-        if h.startswith(f"/proc/{os.getpid()}/fd/") and h.rsplit("/", 1)[1] in ("1", "2"):
-            return int(h.rsplit("/", 1)[1])
+        for prefix in ("/dev/fd/", "/proc/self/fd/", f"/proc/{os.getpid()}/fd/"):
+            if h.startswith(prefix) and h[len(prefix):].isdigit():
+                return int(h[len(prefix):])
     return None
 
 
@@ -207,8 +209,9 @@ def _open_through(p: Path, binary: bool):
         with contextlib.suppress(OSError, ValueError):
             (sys.stdout if n == 1 else sys.stderr).flush()
         fd = os.dup(n)
-    else:
-        fd = os.open(p, os.O_WRONLY | getattr(os, "O_NOCTTY", 0))
+    else:                                      # a device or a FIFO; a regular file behind /proc is truncated
+        regular = stat.S_ISREG(os.stat(p).st_mode)
+        fd = os.open(p, os.O_WRONLY | getattr(os, "O_NOCTTY", 0) | (os.O_TRUNC if regular else 0))
     kw = {} if binary else {"encoding": "utf-8", "newline": ""}
     with os.fdopen(fd, "wb" if binary else "w", **kw) as f:
         yield f
