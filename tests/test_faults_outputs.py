@@ -290,3 +290,14 @@ def test_a_quantity_with_its_unit_gives_the_same_run_as_its_si_value(problem, tm
     assert main(["simulate", str(problem), *SIM, "--initial", f"theta={math.pi / 6!r}",
                  "--csv", str(tmp_path / "b.csv")]) == 0
     assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+
+
+@pytest.mark.skipif(not os.path.isdir("/dev/shm"), reason="no /dev/shm")
+def test_an_ordinary_file_in_dev_shm_is_written_whole(tmp_path):
+    target = Path("/dev/shm") / f"rigidkin-test-{os.getpid()}.csv"
+    try:
+        outfile.write_text(target, "a,b\n1,2\n", "the table")
+        assert target.read_text() == "a,b\n1,2\n" and not outfile.through(target)
+        assert not [p for p in target.parent.iterdir() if p.name.startswith(".rigidkin-")]
+    finally:
+        target.unlink(missing_ok=True)

@@ -31,8 +31,10 @@ class OutputError(RigidkinError):
     """An output file cannot be written: a missing folder, no permission, a full disk, an unknown format."""
 
 
-#: Folders whose entries are the system's special files: written through, never renamed over.
+#: Folders whose entries are the system's special files: written through, never renamed over (except the
+#: ordinary files of /dev/shm, a memory file system).
 SPECIAL_ROOTS = ("/dev/", "/proc/", "/sys/")
+ORDINARY = ("/dev/shm/",)
 _STANDARD = {"/dev/stdout": 1, "/dev/stderr": 2, "/proc/self/fd/1": 1, "/proc/self/fd/2": 2,
              "/dev/fd/1": 1, "/dev/fd/2": 2}
 
@@ -56,7 +58,7 @@ def _check(p: Path, what: str, suffixes: tuple[str, ...] | None) -> Path:
     if suffixes is not None and p.suffix.lower() not in suffixes and not through(p):
         raise OutputError(f"cannot write {what} to {p}: the extension '{p.suffix or '(none)'}' is not one of "
                           f"{', '.join(suffixes)}.", hint="Choose a file name with one of these.")
-    if not os.path.lexists(p) and any(h.startswith(SPECIAL_ROOTS) for h in _hops(p)):
+    if not os.path.lexists(p) and _special(p):
         raise OutputError(f"cannot write {what} to {p}: there is no such device.",
                           hint="Name an existing device (/dev/stdout, /dev/null) or a file in a folder of yours.")
     if through(p):
@@ -89,11 +91,16 @@ def _hops(p: Path) -> list[str]:
     return hops
 
 
+def _special(p: Path) -> bool:
+    """``p`` is, or leads through, a folder of special files."""
+    return any(h.startswith(SPECIAL_ROOTS) and not h.startswith(ORDINARY) for h in _hops(p))
+
+
 def through(path) -> bool:
     """``path`` is written through, never replaced: it exists and is not a regular file, or it is (or leads
     through) a special folder such as ``/dev`` or ``/proc``."""
     p = Path(path)
-    if any(h.startswith(SPECIAL_ROOTS) for h in _hops(p)):
+    if _special(p):
         return os.path.lexists(p)
     try:
         return not stat.S_ISREG(os.stat(p).st_mode)
