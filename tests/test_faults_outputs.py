@@ -195,6 +195,9 @@ def test_the_signal_handlers_chain_to_the_programs_own(tmp_path):
     seen = []
     previous = signal.signal(signal.SIGHUP, lambda s, f: seen.append(s))
     saved = dict(tempfiles._PREVIOUS)
+    others = tempfiles.live()                          # what the rest of this process registered: kept
+    for p in others:
+        tempfiles.release(p)
     tempfiles._PREVIOUS.pop(signal.SIGHUP, None)
     try:
         tmp = tmp_path / ".rigidkin-x.part"
@@ -207,6 +210,8 @@ def test_the_signal_handlers_chain_to_the_programs_own(tmp_path):
         signal.signal(signal.SIGHUP, previous)
         tempfiles._PREVIOUS.clear()
         tempfiles._PREVIOUS.update(saved)
+        for p in others:
+            tempfiles.register(p)
 
 
 # columns and keys ---------------------------------------------------------------------------------------

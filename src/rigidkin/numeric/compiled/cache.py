@@ -120,7 +120,8 @@ def checked_folder() -> Path:
 
 def private_folder() -> Path:
     """A folder of this process only (mode 0700), removed at exit."""
-    if not _PRIVATE:
+    if not _PRIVATE or not _PRIVATE[0].is_dir():       # none yet, or removed (a signal's cleanup)
+        _PRIVATE.clear()
         p = Path(tempfile.mkdtemp(prefix="rigidkin-"))
         tempfiles.register(p)                       # removed on SIGTERM and SIGHUP too
         _PRIVATE.append(p)
