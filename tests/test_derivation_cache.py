@@ -54,7 +54,7 @@ def _entry(folder):
 def _loads(monkeypatch) -> list:
     """Count the problems loaded from their file (not from the cache)."""
     calls, real = [], common.load_system
-    monkeypatch.setattr(common, "load_system", lambda p: calls.append(p) or real(p))
+    monkeypatch.setattr(common, "load_system", lambda p: calls.append(getattr(p, "problem", p)) or real(p))
     return calls
 
 

@@ -87,7 +87,7 @@ def test_outputs_csv_json_plot_and_dense_state(ladder, tmp_path):
     text = r.to_csv(tmp_path / "h.csv")
     head = text.splitlines()[0].split(",")
     assert head[:6] == ["t", "mode", "theta", "x", "dot(theta)", "dot(x)"]
-    assert {"N_A", "N_B", "T", "U", "E", "W"} <= set(head)
+    assert {"N_A", "N_B", "energy: T", "energy: U", "energy: E", "energy: W"} <= set(head)
     rows = text.splitlines()[1:]
     assert len(rows) == len(r.t) and float(rows[-1].split(",")[0]) == 6.0
     d = json.loads(r.to_json())

@@ -29,6 +29,28 @@ def cache_dir() -> Path:
     return Path(os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")) / "rigidkin"
 
 
+_FAULTS: set[str] = set()
+
+
+def fault(where, reason: str) -> None:
+    """A cache that cannot be used (read-only, full, vanished, a folder where a file should be): one line
+    on stderr (a RuntimeWarning, once per command) and the command runs on without it."""
+    say_once(f"the cache at {where} cannot be used ({reason}); running without the cache.", "fault")
+
+
+def new_run() -> None:
+    """A new command starts: its first cache fault is said again."""
+    _FAULTS.clear()
+
+
+def say_once(message: str, kind: str | None = None) -> None:
+    """A RuntimeWarning about the cache, said once per command (:func:`new_run`; per ``kind``, else per message)."""
+    if (kind or message) in _FAULTS:
+        return
+    _FAULTS.add(kind or message)
+    warnings.warn(message, RuntimeWarning, stacklevel=3)
+
+
 def folder() -> Path | None:
     """The entries' folder, made and checked private; None (with a warning) when it cannot be used safely."""
     base = Path(os.path.realpath(cache_dir()))           # a link is judged by where it leads
@@ -45,9 +67,12 @@ def folder() -> Path | None:
             if not why and os.lstat(where).st_mode & 0o077:
                 os.chmod(where, 0o700)                   # our own folder: make it private
     except OSError as exc:
-        why = f"{base} cannot be used ({exc.strerror or exc})"
+        fault(base, exc.strerror or str(exc))
+        return None
     if why:
-        warnings.warn(f"{why}, so the derivation cache is not used (set RIGIDKIN_CACHE to a folder of your own).",
-                      RuntimeWarning, stacklevel=2)
+        if why.endswith("is not a folder"):         # a file where the folder should be: a fault, not a threat
+            fault(why.removesuffix(" is not a folder"), "it is not a folder")
+        else:
+            say_once(f"{why}, so the derivation cache is not used (set RIGIDKIN_CACHE to a folder of your own).")
         return None
     return where

@@ -12,6 +12,8 @@ import stat
 import tempfile
 from pathlib import Path
 
+from . import tempfiles
+
 
 def uid() -> int:
     """This process's user id (-1 where the platform has none)."""
@@ -56,6 +58,7 @@ def regular_and_ours(path: Path, mode_mask: int = stat.S_IWGRP | stat.S_IWOTH) -
 def write_private(path: Path, data: bytes) -> None:
     """Write ``data`` to ``path`` atomically, mode 0600 (a temporary file of ours renamed over it)."""
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
+    tempfiles.register(tmp)
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data)
@@ -63,3 +66,5 @@ def write_private(path: Path, data: bytes) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+    finally:
+        tempfiles.release(tmp)

@@ -8,19 +8,40 @@ from __future__ import annotations
 import threading
 from contextlib import contextmanager
 
+from ..base import cache_folder
 from ..base.errors import RigidkinError
 from ..base.textsafe import terminal_safe
 from ..base.timelimit import time_limit as limit
 from ..io.derivation_cache import CachedProblem
-from ..io.load import load_system
+from ..io.load import load_system, read_source
 from .deadline import set_step
+
+
+def source_of(args):
+    """The problem file of ``args.problem`` read once for the whole command (:class:`rigidkin.io.load.Source`):
+    what is parsed, what the caches' keys are made of."""
+    source = getattr(args, "_source", None)
+    if source is None:
+        cache_folder.new_run()                  # a cache fault is said once in each command
+        source = read_source(args.problem)
+        args._source = source
+    return source
 
 
 def open_problem(args):
     """The problem of ``args.problem`` as a :class:`rigidkin.io.derivation_cache.CachedProblem`: read from the
-    derivation cache when it was derived before (unless ``--no-cache``), else loaded from its file."""
+    derivation cache when it was derived before (unless ``--no-cache``), else built from the bytes read."""
+    source = source_of(args)
+    return CachedProblem(source, lambda: load_system(source), use=not getattr(args, "no_cache", False))
 
-    return CachedProblem(args.problem, lambda: load_system(args.problem), use=not getattr(args, "no_cache", False))
+
+def problem_inputs(args) -> list:
+    """The files a command on ``args.problem`` reads (to refuse an output over one of them)."""
+    try:
+        source = source_of(args)
+    except RigidkinError:
+        return []
+    return [source.path] if source.path is not None else []
 
 
 @contextmanager

@@ -13,7 +13,7 @@ from __future__ import annotations
 import json
 
 from ..base.errors import InputError
-from ..base.outfile import check_target, writing
+from ..base.outfile import check_outputs, check_target, writing
 from .common import guarded, json_safe, progress
 from .options import add_timeout
 
@@ -47,8 +47,11 @@ def run(args) -> int:
                          hint="rigidkin grade WORKSHEET.toml | rigidkin grade --template ladder")
     if args.output:
         check_target(args.output, "the graded worksheet")
+        check_outputs({"-o": args.output}, [args.worksheet])
     with progress(f"Reading {args.worksheet}"):
         ws = guarded(args, load_worksheet, args.worksheet)
+    if args.output:                                     # nor over the problem file the worksheet names
+        check_outputs({"-o": args.output}, [args.worksheet, ws.problem_ref])
     with progress("Deriving the problem and grading each step"):
         report = guarded(args, grade, ws)
     if args.format == "json":

@@ -8,12 +8,13 @@ inline figures, an inline animation player); Markdown and LaTeX put their figure
 from __future__ import annotations
 
 from ..base.errors import InputError, RigidkinError
-from ..base.outfile import OutputError, check_target, writing
+from ..base.outfile import OutputError, check_outputs, check_target, writing
 from ..base.textsafe import terminal_safe
 from ..io.load import value
 from ..report.blocks import Animation
-from .common import guarded, open_problem, progress, with_file
+from .common import guarded, open_problem, problem_inputs, progress, with_file
 from .options import add_no_cache, add_timeout, end_time
+from .quantities import checked_values, units_of
 from .solve import answer_questions, check_declared_start
 
 
@@ -58,7 +59,7 @@ def _pairs(items, what: str) -> dict:
 
 def _numbers(pairs: dict, what: str) -> dict:
 
-    return {k: value(v, f"{what} {k}") for k, v in pairs.items()}
+    return {k: v if isinstance(v, float) else value(v, f"{what} {k}") for k, v in pairs.items()}
 
 
 def run(args) -> int:
@@ -69,6 +70,7 @@ def run(args) -> int:
     check_target(args.output, "the report")
     if args.gif:
         check_target(args.gif, "the animation", (".gif",))
+    check_outputs({"-o": args.output, "--gif": args.gif}, problem_inputs(args))
     if args.gif and args.simulate is None:
         raise InputError("--gif needs a simulation to animate.", where="report --gif",
                          hint="Add --simulate T (seconds).")
@@ -78,12 +80,15 @@ def run(args) -> int:
         raise InputError("--initial sets the start of a simulation.", where="report --initial",
                          hint="Add --simulate T (seconds).")
     mode = _pairs(args.mode, "report --mode")
-    at = _numbers(_pairs(args.at, "report --at"), "report --at")
+    at = _pairs(args.at, "report --at")
     params = _pairs(args.set, "report --set")
     initial = _pairs(args.initial, "report --initial")
     with progress(f"Reading {args.problem}"):
         derived = guarded(args, open_problem, args)
     system, spec = derived.system, derived.spec
+    units = units_of(system)
+    at = _numbers(checked_values(at, units, "report --at"), "report --at")
+    initial = checked_values(initial, units, "report --initial")
     try:
         with progress(f"Deriving the equations of motion ({args.method})"):
             solution = guarded(args, system.solve, method=args.method, mode=mode)

@@ -16,11 +16,12 @@ import warnings
 
 from ..base.errors import InputError
 from ..base.limits import check_memory, history_bytes
-from ..base.outfile import check_target
+from ..base.outfile import check_outputs, check_target
 from ..base.textsafe import terminal_safe
-from .common import guarded, json_safe, open_problem
+from .common import guarded, json_safe, open_problem, problem_inputs
 from .deadline import set_step
 from .options import EXIT_STOPPED, add_no_cache, add_timeout, end_time, points, start_time, tolerance
+from .quantities import checked_values, units_of
 
 
 def register(sub) -> None:
@@ -146,6 +147,7 @@ def run(args) -> int:
         check_target(args.csv, "the histories")
     if args.plot:
         check_target(args.plot, "the figure", figure_formats())
+    check_outputs({"--csv": args.csv, "--plot": args.plot}, problem_inputs(args))
     if not args.t_end > args.t_start:
         raise InputError(f"the end time {args.t_end:g} s is not after the start time {args.t_start:g} s.",
                          where="--t-end", hint="Give --t-end greater than --t-start.")
@@ -155,6 +157,7 @@ def run(args) -> int:
     restitution = _restitution(args.restitution)
     derived = guarded(args, open_problem, args)
     system = derived.system
+    initial = checked_values(initial, units_of(system), "--initial")
     check_points(system, args.points)
     progress = _Progress(sys.stderr.isatty() and not args.json)
     set_step(f"Simulating to t = {args.t_end:g} s")

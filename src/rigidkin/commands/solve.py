@@ -9,7 +9,7 @@ from ..base.errors import RigidkinError
 from ..base.textsafe import terminal_safe
 from ..derive.laws import METHODS
 from ..io.derivation_cache import read_output, write_output
-from .common import guarded, json_safe, open_problem, progress, with_file
+from .common import guarded, json_safe, open_problem, progress, source_of, with_file
 from .options import EXIT_UNANSWERED, add_no_cache, add_timeout, parse_modes
 
 
@@ -69,7 +69,7 @@ def run(args) -> int:
 
     use = not args.no_cache
     options = ("solve", args.method, args.format, bool(args.no_answers), tuple(args.mode))
-    kept = read_output(args.problem, options, use)
+    kept = read_output(source_of(args), options, use)
     if kept is not None:
         print(kept["text"])
         return kept["status"]
@@ -82,7 +82,7 @@ def run(args) -> int:
         warnings.showwarning = show
     print(text)
     if status == 0 and not shown:       # a warning, or a question left unanswered, is said again next time
-        write_output(args.problem, options, text, status, use)
+        write_output(source_of(args), options, text, status, use)
     return status
 
 

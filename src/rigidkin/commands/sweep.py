@@ -15,14 +15,15 @@ import sys
 import time
 
 from ..base.errors import InputError
-from ..base.outfile import check_target
+from ..base.outfile import check_outputs, check_target
 from ..base.textsafe import terminal_safe
 from ..base.units import MAX_MAGNITUDE
 from ..io.derivation_cache import read_kept, write_kept
 from ..io.load import value as quantity
-from .common import guarded, open_problem
+from .common import guarded, open_problem, problem_inputs, source_of
 from .deadline import set_step
 from .options import add_no_cache, add_timeout, chunk, end_time, threads, tolerance, workers
+from .quantities import checked, checked_events, checked_values, units_of
 from .simulate import _pairs as pairs
 
 
@@ -69,18 +70,24 @@ def _pairs(items, what) -> dict:
     return pairs(items, what)
 
 
-def _value(text: str, where: str) -> float:
-    """A value of an axis: a plain number read as it is (no unit registry to load), else through
-    rigidkin's quantity parser (units, and every refusal: not finite, too large, not a quantity)."""
+def _value(text: str, where: str, unit: str | None = None) -> float:
+    """A value of an axis: a plain number read as it is (SI; no unit registry to load), else through
+    rigidkin's quantity parser (units checked against ``unit``'s dimension, and every refusal: not finite,
+    too large, not a quantity)."""
     from ..numeric.sweeps.sweep_record import plain_number
 
     v = plain_number(text)
     if v is not None and abs(v) <= MAX_MAGNITUDE:
         return v
-    return quantity(text, where)
+    return checked(text, unit, where) if unit else quantity(text, where)
 
 
-def parse_axis(text: str, where: str):
+def parse_axes(raw: dict, units: dict) -> dict:
+    """The ``--param`` axes with their values in SI, each checked against the dimension of what it names."""
+    return {name: parse_axis(v, f"--param {name}", units.get(name)) for name, v in raw.items()}
+
+
+def parse_axis(text: str, where: str, unit: str | None = None):
     """``START:STOP:COUNT`` → (start, stop, count); ``V1,V2,…`` → a list; values may carry units."""
     text = text.strip()
     if ":" in text:
@@ -93,8 +100,8 @@ def parse_axis(text: str, where: str):
             raise InputError(f"the count '{parts[2]}' is not a whole number.", where=where) from None
         if count < 1 or count > 10_000_000:
             raise InputError(f"the count {count} must be between 1 and 10^7.", where=where)
-        return _value(parts[0], where), _value(parts[1], where), count
-    values = [_value(v, where) for v in text.split(",") if v.strip()]
+        return _value(parts[0], where, unit), _value(parts[1], where, unit), count
+    values = [_value(v, where, unit) for v in text.split(",") if v.strip()]
     if not values:
         raise InputError(f"'{text}' gives no values.", where=where)
     return values
@@ -110,31 +117,39 @@ def run(args) -> int:
         from ..numeric.figure import figure_formats
 
         check_target(args.plot, "the figure", figure_formats())
-    vary = {name: parse_axis(v, f"--param {name}") for name, v in _pairs(args.param, "--param").items()}
+    check_outputs({"-o": args.output, "--plot": args.plot}, problem_inputs(args))
+    raw = _pairs(args.param, "--param")
+    for name, v in raw.items():                  # the form of every axis, before anything is read or derived
+        parse_axis(v, f"--param {name}")
     sets, initial, mode = _pairs(args.set, "--set"), _pairs(args.initial, "--initial"), _pairs(args.mode, "--mode")
     scheduler = args.scheduler or ("local" if args.workers else None)
     start = time.perf_counter()
-    res = _from_record(args, vary, sets, initial, mode) if scheduler is None and args.backend != "numpy" else None
+    res = _from_record(args, raw, sets, initial, mode) if scheduler is None and args.backend != "numpy" else None
     if res is None:
         from ..numeric.sweeps.sweep import check_size, sweep
 
         derived = guarded(args, open_problem, args)
         system = derived.system
+        units = units_of(system)
+        vary = parse_axes(raw, units)
+        initial = checked_values(initial, units, "--initial")
+        stop_at = checked_events(args.stop_at, units, "--stop-at")
+        record = checked_events(args.record, units, "--record")
         runs = check_size(system, vary, events=len(args.stop_at) + len(args.record) + 2 * len(system.constraints)
                           + 2)
         set_step(f"Sweeping {runs:,} runs")
         progress = _Progress(sys.stderr.isatty())
         start = time.perf_counter()
         try:
-            res = sweep(system, vary, params=sets, initial=initial, t_end=args.t_end, stop_at=args.stop_at or None,
-                        record=args.record, mode=mode, rtol=args.rtol, atol=args.atol,
+            res = sweep(system, vary, params=sets, initial=initial, t_end=args.t_end, stop_at=stop_at or None,
+                        record=record, mode=mode, rtol=args.rtol, atol=args.atol,
                         workers=args.workers if scheduler else args.threads, scheduler=scheduler, chunk=args.chunk,
                         backend=args.backend, progress=progress, keep_record=not args.no_cache)
         finally:
             progress.close()
         derived.save()
         if res.record is not None:
-            _keep_record(args, mode, res.record)
+            _keep_record(args, mode, {**res.record, "units": units})
     elapsed = time.perf_counter() - start
     set_step("Writing the table")
     res.write(args.output)
@@ -166,16 +181,19 @@ def _from_record(args, vary, sets, initial, mode):
     nothing derived); None: take the full route."""
     from ..numeric.sweeps.sweep_record import SUFFIX, run
 
-    rec = read_kept(args.problem, _record_options(args, mode), SUFFIX, use=not args.no_cache)
-    if rec is None:
-        return None
+    rec = read_kept(source_of(args), _record_options(args, mode), SUFFIX, use=not args.no_cache)
+    units = rec.get("units") if rec is not None else None
+    if not isinstance(units, dict) or not all(isinstance(u, str | None) for u in units.values()):
+        return None                              # no record, or one kept without the units: the full route
+    vary = parse_axes(vary, units)
+    initial = checked_values(initial, units, "--initial")
     return run(rec, vary, sets, initial, args.t_end, args.rtol, args.atol, args.threads, args.chunk)
 
 
 def _keep_record(args, mode, record: dict) -> None:
     from ..numeric.sweeps.sweep_record import SUFFIX
 
-    write_kept(args.problem, _record_options(args, mode), SUFFIX, record, use=not args.no_cache)
+    write_kept(source_of(args), _record_options(args, mode), SUFFIX, record, use=not args.no_cache)
 
 
 def _status_counts(status) -> dict[str, int]:

@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import json
 
-from ..base.errors import InputError
-from ..base.outfile import check_target, writing
+from ..base.errors import InputError, RigidkinError
+from ..base.outfile import check_outputs, check_target, writing
 from ..base.textsafe import terminal_safe
-from .common import guarded, json_safe, progress
+from ..base.units import parse_quantity
+from .common import guarded, json_safe, problem_inputs, progress, source_of
 from .options import add_timeout
 
 
@@ -38,6 +39,29 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+def _declared_units(args) -> dict:
+    """The units the problem file declares for its parameters ({} for a bundled example built in Python)."""
+    import tomllib
+
+    try:
+        source = source_of(args)
+        data = tomllib.loads(source.data.decode("utf-8")) if source.path is not None else {}
+    except (RigidkinError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return {}                                # said when the problem is loaded
+    params = data.get("parameters") if isinstance(data, dict) else None
+    return {k: v["unit"] for k, v in params.items() if isinstance(v, dict) and isinstance(v.get("unit"), str)} \
+        if isinstance(params, dict) else {}
+
+
+def _check_vary(args, vary: dict) -> None:
+    """Each ``--vary`` bound finite and, with a unit, of the parameter's declared dimension (``m=1 s:2 s``
+    for a mass is refused)."""
+    units = _declared_units(args) if vary else {}
+    for name, bounds in vary.items():
+        for text in bounds:
+            parse_quantity(text, units.get(name), f"--vary {name}")
+
+
 def run(args) -> int:
     import math
 
@@ -48,7 +72,9 @@ def run(args) -> int:
         raise InputError("--tolerance is a relative tolerance between 0 and 1.", where="--tolerance")
     if args.output:
         check_target(args.output, "the Moodle XML", (".xml",))
+        check_outputs({"-o": args.output}, problem_inputs(args))
     vary = parse_vary(args.vary)
+    _check_vary(args, vary)
     with progress(f"Solving {args.count} variants of {args.problem}"):
         ps = guarded(args, make_set, args.problem, args.count, args.seed, vary, args.tolerance)
     if args.output:

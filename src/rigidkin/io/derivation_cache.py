@@ -6,7 +6,8 @@ answers to its questions.  ``solve``, ``check``, ``simulate``, ``report`` and ``
 read one entry and add to it what they derive; the numbers given on the command line (``--set``,
 ``--initial``) are applied after the derivation, and modes and laws are looked up inside the entry.
 
-Key: the SHA-256 of the problem file's bytes and its resolved path (a bundled example: its name and
+Key: the SHA-256 of the problem file's bytes — exactly the bytes parsed: a command reads its file once
+(:class:`rigidkin.io.load.Source`) — and its resolved path (a bundled example: its name and
 file), rigidkin's version and a fingerprint of its code (size and time of every module), Python's and
 sympy's versions.  A changed file, rigidkin or sympy gives a new entry.
 
@@ -26,36 +27,31 @@ from __future__ import annotations
 import contextlib
 import functools
 import hashlib
-import hmac
 import os
 import sys
 import warnings
 from pathlib import Path
 
-from .. import __version__, examples
+from .. import __version__
+from ..base import cache_folder, signing
 from ..base.cache_folder import cache_dir, disabled_by_env, folder  # noqa: F401  (public here too)
+from ..base.errors import RigidkinError
 from ..base.private_files import regular_and_ours, write_private
+from ..base.signing import SECRET_NAME
 from ..base.trace import Trace
+from .source import read_source
 
 MAGIC = b"rigidkin-derivation-2\n"
-SECRET_NAME = "secret.key"
 MAX_ENTRY = 256 * 1024 * 1024            # bytes: a larger derivation is not kept
 MAX_ENTRIES = 200                         # the oldest beyond these are removed when one is written
 _CACHED = type(functools.cache(len))              # a memoized function (functools.cache) in what is kept
 
 
-def secret(where: Path) -> bytes:
-    """The folder's HMAC key: 32 random bytes, 0600; made anew (voiding every entry) when not exactly that."""
-    path = where / SECRET_NAME
-    if regular_and_ours(path, 0o077):
-        try:
-            key = path.read_bytes()
-        except OSError:
-            key = b""
-        if len(key) == 32:
-            return key
-    key = os.urandom(32)
-    write_private(path, key)
+def secret(where: Path) -> bytes | None:
+    """The folder's HMAC key (:func:`rigidkin.base.signing.secret`); None when it cannot be read or made."""
+    key = signing.secret(where)
+    if key is None:
+        cache_folder.fault(where / SECRET_NAME, "the key of the cache cannot be read or written")
     return key
 
 
@@ -82,26 +78,19 @@ def _code_fingerprint() -> bytes:
     return h.digest()
 
 
-def problem_source(problem: str) -> tuple[str, bytes] | None:
-    """(resolved path or example name, bytes) of a problem as ``load_system`` reads it; None: not cacheable."""
-
-    path = Path(problem)
+def problem_source(problem) -> tuple[str, bytes] | None:
+    """(resolved path or example name, bytes) of a problem (a name, a path, or a
+    :class:`rigidkin.io.load.Source` already read); None: not cacheable (it cannot be read)."""
     try:
-        if path.suffix == ".toml" or path.exists():
-            if not path.is_file():
-                return None
-            return str(path.resolve()), path.read_bytes()
-        if problem in examples.names():
-            toml = examples.HERE / f"{problem}.toml"
-            if toml.exists():
-                return str(toml.resolve()), toml.read_bytes()
-            return f"example:{problem}", b""            # a Python example: its code is in the fingerprint
-    except OSError:
+        source = read_source(problem)
+    except RigidkinError:
         return None
-    return None
+    return source.name, source.data
 
 
-def key_of(problem: str) -> str | None:
+def key_of(problem) -> str | None:
+    """The entry's key: made from exactly the bytes that are parsed (pass the command's
+    :class:`rigidkin.io.load.Source`; a name or path is read now)."""
     source = problem_source(problem)
     if source is None:
         return None
@@ -114,7 +103,7 @@ def key_of(problem: str) -> str | None:
 
 
 def _mac(secret_key: bytes, key: str, payload: bytes) -> bytes:
-    return hmac.new(secret_key, key.encode() + b"\0" + payload, hashlib.sha256).hexdigest().encode()
+    return signing.mac(secret_key, key, payload)
 
 
 def _read_signed(path: Path, key: str) -> bytes | None:
@@ -132,7 +121,8 @@ def _read_signed(path: Path, key: str) -> bytes | None:
             ok = False
     head = len(MAGIC) + 64 + 1
     ok = ok and data.startswith(MAGIC) and len(data) > head and data[head - 1:head] == b"\n"
-    if ok and hmac.compare_digest(data[len(MAGIC):head - 1], _mac(secret(path.parent), key, data[head:])):
+    secret_key = secret(path.parent) if ok else None
+    if secret_key is not None and signing.matches(secret_key, key, data[head:], data[len(MAGIC):head - 1]):
         return data[head:]
     _remove(path)
     return None
@@ -142,9 +132,13 @@ def _write_signed(path: Path, key: str, payload: bytes) -> bool:
     """Write ``payload`` with its MAC atomically (mode 0600); False when it cannot be written."""
     if len(payload) > MAX_ENTRY:
         return False
+    secret_key = secret(path.parent)
+    if secret_key is None:
+        return False
     try:
-        write_private(path, MAGIC + _mac(secret(path.parent), key, payload) + b"\n" + payload)
-    except OSError:
+        write_private(path, MAGIC + _mac(secret_key, key, payload) + b"\n" + payload)
+    except OSError as exc:
+        cache_folder.fault(path, exc.strerror or str(exc))
         return False
     _prune(path.parent)
     return True
@@ -304,8 +298,9 @@ class CachedProblem:
     parsed file, None for a Python example) and ``answers`` (None until answered); ``save()`` stores
     whatever was derived since."""
 
-    def __init__(self, problem: str, load, use: bool = True):
-        """``load()`` builds (system, spec) from the file when the cache has no entry for it."""
+    def __init__(self, problem, load, use: bool = True):
+        """``problem`` is best the command's :class:`rigidkin.io.load.Source` (the bytes read once: the key is
+        made from them and ``load()`` builds (system, spec) from them when the cache has no entry)."""
         self.problem = problem
         self.answers = None
         self.hit = False

@@ -1,42 +1,36 @@
-"""What a user names and types: a problem (a bundled example's name or a problem file) loaded as a
-System, and a value typed on its own (SI, or with a unit: ``"30 deg"``).
+"""What a user names and types: a problem (a bundled example's name or a problem file) read once and loaded
+as a System, and a value typed on its own (SI, or with a unit: ``"30 deg"``).
 
-Shared by the commands and the grader, which read the same problems and the same values.
+A problem is read into a :class:`Source` once per command: its bytes are what is parsed and what the
+derivation cache's key is made of, so a file changed while a command runs can never give an entry for other
+equations.  Shared by the commands and the grader, which read the same problems and the same values.
 """
 
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 from .. import examples
 from ..base.errors import RigidkinError
 from ..base.units import parse_quantity
-from .locate import resolve_problem
+from .source import MAX_FILE_BYTES, Source, read_bytes, read_source  # noqa: F401  (public here too)
 
 
-def load_system(problem: str):
-    """A System from a bundled example name (``ladder``) or a problem file path.
+def load_system(problem):
+    """A System from a bundled example name (``ladder``), a problem file path or a :class:`Source`.
 
     Returns (system, spec) where ``spec`` is the parsed problem file (None for a Python example).
-    A bundled example with a problem file (``examples/ladder.toml``) is read from that file.
+    A bundled example with a problem file (``examples/ladder.toml``) is read from that file.  A Source is
+    built from exactly its bytes (the file is not read again).
     """
-    from .problem import load_problem  # the schema and the expression language: pydantic, sympy
+    source = read_source(problem)
+    if source.path is None:
+        return examples.build(source.problem), None
+    from .problem import build_problem  # the schema and the expression language: pydantic, sympy
+    from .reading import parse_bytes
 
-    path = Path(problem)
-    if path.suffix == ".toml" and not path.exists() and path.stem in examples.names():
-        raise RigidkinError(f"there is no file {problem}.", where=problem,
-                            hint=f"The bundled example of that name is solved with 'rigidkin solve {path.stem}'.")
-    how, _ = resolve_problem(problem)       # a file on disk first; a folder never hides an example
-    if how == "file" and (path.suffix == ".toml" or path.exists()):
-        return load_problem(path)
-    if problem in examples.names():
-        toml = examples.HERE / f"{problem}.toml"
-        if toml.exists():
-            return load_problem(toml)
-        return examples.build(problem), None
-    raise RigidkinError(f"'{problem}' is neither a problem file nor a bundled example.",
-                        hint=f"Bundled examples: {', '.join(examples.names())}. Run 'rigidkin list'.")
+    text, data = parse_bytes(source.data, source.path)
+    return build_problem(data, text, source.path)
 
 
 def value(text: str, where: str) -> float:

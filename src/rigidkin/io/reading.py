@@ -18,34 +18,23 @@ from ..model.shapes import SHAPES
 from . import schema as S
 from .locate import Locator
 from .prescan import check_tree, prescan
-
-#: Larger files are refused before they are read (a problem description is a few kilobytes).
-MAX_FILE_BYTES = 1_000_000
+from .source import MAX_FILE_BYTES, read_bytes  # noqa: F401  (MAX_FILE_BYTES public here too)
 
 
 # reading ------------------------------------------------------------------------------------------------
 def read_toml(path: Path | str) -> tuple[str, dict]:
-    """The text and parsed TOML of a file (size-limited; syntax errors with their line)."""
-    path = Path(path)
+    """The text and parsed TOML of a file (read once, size-limited; syntax errors with their line)."""
+    return parse_bytes(read_bytes(path), path)
+
+
+def parse_bytes(raw: bytes, path: Path | str) -> tuple[str, dict]:
+    """The text and parsed TOML of the bytes ``raw`` read from ``path`` (exactly these bytes: the file is not
+    read again)."""
     try:
-        size = path.stat().st_size
-    except OSError as exc:
-        raise InputError(f"cannot read the problem file ({exc.strerror or exc}).", where=str(path),
-                         hint="Check the path; 'rigidkin list' shows the bundled examples.") from None
-    if not path.is_file():
-        raise InputError("is not a file.", where=str(path), hint="Give the path of a .toml problem file.")
-    if size > MAX_FILE_BYTES:
-        raise InputError(f"the problem file is {size} bytes long (at most {MAX_FILE_BYTES}).", where=str(path),
-                         hint="A problem file describes one system in a few kilobytes; check that this is the "
-                              "right file.")
-    try:
-        raw = path.read_bytes()
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise InputError(f"the file is not UTF-8 text (byte {exc.start}).", where=str(path),
                          hint="Save it as UTF-8.") from None
-    except OSError as exc:
-        raise InputError(f"cannot read the problem file ({exc.strerror or exc}).", where=str(path)) from None
     return text, _parse_toml(text, str(path))
 
 

@@ -1,9 +1,11 @@
 """A solution as plain data (JSON): every expression is ``str(expr)`` of the sympy expression.
 
 ``sympy.parse_expr`` reads each string back (coordinates print as ``theta(t)``, rates as
-``Derivative(theta(t), t)``).  The top-level ``eom``, ``accelerations`` and ``reactions`` are those of
-the first regime; ``regimes`` lists every regime (one for most problems; one per sign of the slip
-speed where sliding friction acts) with the conditions that define it.  ``answers`` holds each
+``Derivative(theta(t), t)``).  ``regimes`` lists every regime (one for most problems; one per sign of the
+slip speed where sliding friction acts), each with its ``index``, its ``label`` and the conditions that
+define it.  The top-level ``eom``, ``accelerations``, ``reactions`` and ``validity`` are those of one regime,
+the one ``regime`` names (``{"index": 0, "label": ..., "of": N}``): with ``of`` > 1 they hold only
+under that regime's conditions and the others are in ``regimes``.  ``answers`` holds each
 answer's exact value (a string, null when unanswered), ``answer_text`` its sentence (or the reason it
 was not answered), ``answer_data`` the same as data: exact value and its number at the parameters'
 values, tolerance, and for events whether and when they happen and every coordinate and rate there.
@@ -133,7 +135,7 @@ def answer_data(a, values: dict) -> dict:
 def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] | None = None) -> dict[str, Any]:
     """The JSON object ``rigidkin solve --format json`` prints."""
     s = sol.system
-    regimes = [regime_data(r) for r in sol.regimes]
+    regimes = [{"index": i, **regime_data(r)} for i, r in enumerate(sol.regimes)]
     first = regimes[0]
     data: dict[str, Any] = {
         "name": s.name,
@@ -153,6 +155,7 @@ def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] 
                 "value": d.value, "si_unit": si_unit(d.dimension), "value_in_unit": from_si(d.value, d.unit)}
             for n, d in getattr(s, "definitions", {}).items()},
         "relations": {q.func.__name__: _s(e) for q, e in sol.relations.items()},
+        "regime": {"index": 0, "label": first["label"], "of": len(regimes)},
         "eom": first["eom"],
         "accelerations": first["accelerations"],
         "reactions": first["reactions"],

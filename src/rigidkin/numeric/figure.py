@@ -150,11 +150,11 @@ def save_figure(fig, path, what: str = "the figure", **savefig_kw) -> Path:
     buf = io.BytesIO()
     try:
         try:
-            fig.savefig(buf, format=p.suffix[1:].lower(), **savefig_kw)
+            fig.savefig(buf, format=p.suffix[1:].lower() or "png", **savefig_kw)
         except ValueError:                   # text that mathtext cannot parse after all: show every text as written
             _plain_text(fig)
             buf = io.BytesIO()
-            fig.savefig(buf, format=p.suffix[1:].lower(), **savefig_kw)
+            fig.savefig(buf, format=p.suffix[1:].lower() or "png", **savefig_kw)
     except (ValueError, RuntimeError, OverflowError) as exc:
         reason = " ".join(str(exc).split())[:300]
         raise OutputError(f"cannot draw {what} for {p}: {reason}.",

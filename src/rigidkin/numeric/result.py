@@ -19,11 +19,14 @@ from pathlib import Path
 import numpy as np
 
 from ..base import display
-from ..base.outfile import write_text, writing
+from ..base.outfile import unique_columns, write_text, writing
 from ..base.textsafe import safe_csv_cell
 from .figure import plot_result
 from .rhs import SimulationError
 from .state import StateLayout, rate_name
+
+#: The prefix of the energy columns (kinetic T, potential U, E = T + U, work W), apart from the user's names.
+ENERGY = "energy: "
 
 
 @dataclass(frozen=True)
@@ -118,9 +121,12 @@ class SimulationResult:
         return {rate_name(nm): self.y[:, n + i] for i, nm in enumerate(self.layout.names)}
 
     def __getitem__(self, name: str) -> np.ndarray:
-        """A history by name: ``theta``, ``dot(theta)``, a reaction, ``T``, ``U``, ``E``, ``W``."""
+        """A history by name: ``theta``, ``dot(theta)``, a reaction, ``energy: T`` (kinetic), ``energy: U``,
+        ``energy: E``, ``energy: W`` (a bare ``T``, ``U``, ``E``, ``W`` when no reaction has that name)."""
         if name in self.reactions:
             return self.reactions[name]
+        if name.startswith(ENERGY) and name[len(ENERGY):] in self.energy:
+            return self.energy[name[len(ENERGY):]]
         if name in self.energy:
             return self.energy[name]
         return self.y[:, self.layout.index(name)]
@@ -169,15 +175,15 @@ class SimulationResult:
         return json.dumps(self.to_dict(), indent=indent, allow_nan=False)
 
     def columns(self) -> dict:
-        cols = {"t": self.t}
-        cols.update(self.q)
-        cols.update(self.rates)
-        cols.update(self.reactions)
-        cols.update(self.energy)
-        return cols
+        """The histories by column name: ``t``, the coordinates, the rates, the reactions (the user's names) and
+        the energies namespaced ``energy: T``, ``energy: U``, ``energy: E``, ``energy: W``, so that no user's
+        name (a tension called T) can replace another column; a name that would still appear twice is refused."""
+        return unique_columns([("t", self.t), *self.q.items(), *self.rates.items(), *self.reactions.items(),
+                               *((ENERGY + k, v) for k, v in self.energy.items())], reserved=("mode",))
 
     def to_csv(self, path=None) -> str:
-        """The histories as CSV (t, mode, coordinates, rates, reactions, T, U, E, W); written to ``path`` if given.
+        """The histories as CSV (t, mode, coordinates, rates, reactions, ``energy: T``, ``energy: U``,
+        ``energy: E``, ``energy: W``); written to ``path`` if given.
 
         Text cells (the mode) are made safe for spreadsheets (no formulas).  For long histories
         :meth:`write_csv` streams the rows to the file instead of building the text first.

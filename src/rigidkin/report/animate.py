@@ -19,6 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
 
+from ..base.outfile import write_bytes  # noqa: E402
 from ..base.textsafe import figure_text  # noqa: E402
 from .drawing import draw_body, draw_ropes, draw_surfaces  # noqa: E402
 from .geometry import Geometry, body_size  # noqa: E402
@@ -41,13 +42,13 @@ class MotionAnimation:
         return offline_player(self.animation.to_jshtml(fps=self.fps, embed_frames=True, default_mode="once"))
 
     def save_gif(self, path) -> None:
-        self.animation.save(str(path), writer=PillowWriter(fps=self.fps))
+        write_bytes(path, self.gif_bytes(), "the animation", (".gif",))
 
     def gif_bytes(self) -> bytes:
         fd, name = tempfile.mkstemp(suffix=".gif")
         os.close(fd)
         try:
-            self.save_gif(name)
+            self.animation.save(name, writer=PillowWriter(fps=self.fps))
             with open(name, "rb") as f:
                 return f.read()
         finally:

@@ -26,6 +26,7 @@ from matplotlib.mathtext import MathTextParser  # noqa: E402
 
 from ..base.printing import text as plain_text  # noqa: E402
 from ..derive.mode import setup_mode  # noqa: E402
+from ..numeric.figure import save_figure  # noqa: E402
 from .drawing import draw_body, draw_surfaces  # noqa: E402
 from .geometry import Geometry, body_size  # noqa: E402
 from .geometry import t as geom_t  # noqa: E402
@@ -67,7 +68,7 @@ class FreeBodyDiagram:
         return buf.getvalue()
 
     def save(self, path, dpi: int = 150) -> None:
-        self.figure.savefig(path, dpi=dpi)
+        save_figure(self.figure, path, "the free-body diagram", dpi=dpi)
 
     def close(self) -> None:
         plt.close(self.figure)

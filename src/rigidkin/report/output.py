@@ -1,5 +1,8 @@
 """Writing a report to a file: the format from the file's extension (.html, .md, .tex).
 
+Every file is written through :mod:`rigidkin.base.outfile`: whole or not at all (a full disk or a size
+limit leaves the previous report as it was), written through to a device or ``/dev/stdout``.
+
 An HTML report is one file.  Markdown and LaTeX reports put their figures (PNG) and the animation
 (GIF) in a folder beside the document, ``<name>_files/``, and refer to them by relative path; the
 names of those files are plain (letters, digits, ``. _ -``: no folder, no ``..``).
@@ -10,6 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..base.errors import InputError
+from ..base.outfile import write_bytes, write_text
 from ..base.textsafe import safe_filename
 from .blocks import Animation, Document, Figure
 from .document import build_document
@@ -51,18 +55,14 @@ def write_document(doc: Document, path) -> Path:
                 if isinstance(b, Figure):
                     assets.mkdir(parents=True, exist_ok=True)
                     name = safe_filename(b.key, "figure") + ".png"
-                    (assets / name).write_bytes(b.png)
+                    write_bytes(assets / name, b.png, "a figure of the report")
                     files[b.key] = f"{assets.name}/{name}"
                 elif isinstance(b, Animation) and b.gif:
                     assets.mkdir(parents=True, exist_ok=True)
                     name = "animation-" + safe_filename(b.key, "motion") + ".gif"
-                    (assets / name).write_bytes(b.gif)
+                    write_bytes(assets / name, b.gif, "the animation of the report")
                     files[f"animation-{b.key}"] = f"{assets.name}/{name}"
-    try:
-        path.write_text(render(doc, fmt, files), encoding="utf-8")
-    except OSError as exc:
-        raise InputError(f"cannot write the report: {exc.strerror}.", where=str(path),
-                         hint="Check that the folder exists and is writable.") from None
+    write_text(path, render(doc, fmt, files), "the report")      # whole or not at all: the old report kept
     return path
 
 

@@ -9,20 +9,27 @@ built from, the compiler and the flags; beside it ``rk_<digest>.c`` (the source)
   refused when others may write to it: a world-writable folder such as /tmp, or one owned by someone else);
 * the library, its source and its record are regular files (no links), owned by the user and writable
   by no one else;
-* the stored source is exactly the source asked for, and the record's hashes match the source and the
-  library's bytes.
+* the stored source is exactly the source asked for, and the record is the HMAC-SHA256, under this
+  user's key (``secret.key`` in the folder, :mod:`rigidkin.base.signing`), of the digest, the source and
+  the library's bytes: a library swapped in with a recomputed plain hash does not pass.
 
-Anything else is not loaded: the library is rebuilt (in the cache when the cache folder is ours, else in
-a private temporary folder of this process).  The compiler runs on our own generated source only, with
+The verified bytes are copied into a private folder of this process and loaded from there, so the file
+checked is the file loaded.  Anything else is not loaded: the library is rebuilt (in the cache when the
+cache folder is ours, else in a private temporary folder of this process).  A cache folder that cannot be
+used (read-only, full, removed while running) is said in one warning and the library built privately.
+The compiler runs on our own generated source only, with
 a fixed argument list and no shell.
 """
 
 from __future__ import annotations
 
 import atexit
+import contextlib
 import hashlib
+import hmac
 import os
 import shutil
+import stat
 import subprocess
 import sys
 import tempfile
@@ -30,6 +37,8 @@ import threading
 import warnings
 from pathlib import Path
 
+from ...base import signing, tempfiles
+from ...base.cache_folder import fault
 from ...base.errors import RigidkinError
 from ...base.private_files import folder_problem, regular_and_ours, unsafe_ancestor, write_private
 
@@ -82,9 +91,16 @@ def checked_folder() -> Path:
         except FileExistsError:
             pass
         except OSError as exc:
-            raise CacheError(f"the code cache folder {folder} cannot be created ({exc.strerror}).",
-                             hint="Set RIGIDKIN_CACHE to a writable folder of your own.") from None
-        st = os.lstat(folder)
+            fault(folder, exc.strerror or str(exc))
+            return private_folder()
+        try:
+            st = os.lstat(folder)
+        except OSError as exc:
+            fault(folder, exc.strerror or str(exc))
+            return private_folder()
+    if not stat.S_ISDIR(st.st_mode):                  # a file where the folder should be: a fault, not a threat
+        fault(folder, "it is not a folder")
+        return private_folder()
     why = folder_problem(folder, st) or unsafe_ancestor(folder)
     if why:
         if explicit:
@@ -104,8 +120,10 @@ def checked_folder() -> Path:
 
 def private_folder() -> Path:
     """A folder of this process only (mode 0700), removed at exit."""
-    if not _PRIVATE:
+    if not _PRIVATE or not _PRIVATE[0].is_dir():       # none yet, or removed (a signal's cleanup)
+        _PRIVATE.clear()
         p = Path(tempfile.mkdtemp(prefix="rigidkin-"))
+        tempfiles.register(p)                       # removed on SIGTERM and SIGHUP too
         _PRIVATE.append(p)
         atexit.register(shutil.rmtree, p, True)
     return _PRIVATE[0]
@@ -115,20 +133,26 @@ def _sha(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
 
 
-def _record(digest: str, lib: bytes) -> str:
-    return f"{digest}\n{_sha(lib)}\n"
+def _record(key: bytes, digest: str, source: str, lib: bytes) -> str:
+    """The record of a library: its digest and the MAC of the digest, source and library under ``key``."""
+    tag = signing.mac(key, "compiled:" + digest, _sha(source.encode()).encode() + b"\0" + lib).decode()
+    return f"{digest}\n{tag}\n"
 
 
-def _trusted(folder: Path, digest: str, source: str) -> bool:
-    """True when the cached library of ``digest`` may be loaded (see the module docstring)."""
+def _trusted(folder: Path, digest: str, source: str) -> bytes | None:
+    """The bytes of the cached library of ``digest`` when they may be loaded (see the module docstring)."""
     paths = [folder / f"rk_{digest}{ext}" for ext in (".so", ".c", ".sha256")]
     if not all(regular_and_ours(p) for p in paths):
-        return False
+        return None
+    key = signing.secret(folder)
+    if key is None:
+        return None
     try:
         lib, src, rec = (p.read_bytes() for p in paths)
     except OSError:
-        return False
-    return src == source.encode() and rec.decode(errors="replace") == _record(digest, lib)
+        return None
+    ok = src == source.encode() and hmac.compare_digest(rec, _record(key, digest, source, lib).encode())
+    return lib if ok else None
 
 
 def flags(size: int) -> list[str]:
@@ -144,8 +168,23 @@ def digest_of(source: str, cc: str | None, flag_list) -> str:
 
 
 def _compile(cc: str, flag_list: list[str], source: str, folder: Path, error) -> bytes:
-    """Compile ``source`` in a fresh private folder inside ``folder``; the library's bytes."""
-    with tempfile.TemporaryDirectory(dir=folder, prefix=".build-") as tmp:
+    """Compile ``source`` in a fresh private folder inside ``folder``; the library's bytes.  A cache folder
+    that fails (read-only, full, removed) is said once and the build done in this process's private folder."""
+    if folder == private_folder():
+        return _compile_in(cc, flag_list, source, folder, error)
+    try:
+        return _compile_in(cc, flag_list, source, folder, error)
+    except OSError as exc:
+        reason = exc.strerror or str(exc)
+    except error:                                  # perhaps the folder (full, removed), perhaps the code: try once more
+        reason = "the build could not be written there"
+    lib = _compile_in(cc, flag_list, source, private_folder(), error)
+    fault(folder, reason)
+    return lib
+
+
+def _compile_in(cc: str, flag_list: list[str], source: str, folder: Path, error) -> bytes:
+    with tempfile.TemporaryDirectory(dir=folder, prefix=".build-") as tmp, _registered(tmp):
         src = Path(tmp) / "model.c"
         src.write_text(source)
         out = Path(tmp) / "model.so"
@@ -157,6 +196,15 @@ def _compile(cc: str, flag_list: list[str], source: str, folder: Path, error) ->
                         hint="This is a bug in rigidkin's code generator; the numpy backend still works "
                              "(backend='numpy').")
         return out.read_bytes()
+
+
+@contextlib.contextmanager
+def _registered(path):
+    tempfiles.register(path)
+    try:
+        yield
+    finally:
+        tempfiles.release(path)
 
 
 def build(source: str, cdef: str, error=CacheError):
@@ -173,24 +221,28 @@ def build(source: str, cdef: str, error=CacheError):
         folder = checked_folder()                        # a few stats: refused even when already loaded
         if digest in _LOADED:
             return _LOADED[digest]
-        if not _trusted(folder, digest, source):
+        lib = _trusted(folder, digest, source)
+        if lib is None:
             lib = _compile(cc, flag_list, source, folder, error)
-            for ext, data in ((".c", source.encode()), (".so", lib), (".sha256", _record(digest, lib).encode())):
-                path = folder / f"rk_{digest}{ext}"
+            key = signing.secret(folder) if folder != private_folder() else None
+            if key is None and folder != private_folder():
+                fault(folder / signing.SECRET_NAME, "the key of the cache cannot be read or written")
+            if key is not None:
                 try:
-                    write_private(path, data)
-                except OSError:                           # not ours to replace: use a private copy
-                    return _load_private(digest, source, lib, cdef)
-            if not _trusted(folder, digest, source):      # replaced under us: load a private copy
-                return _load_private(digest, source, lib, cdef)
-        return _load(folder / f"rk_{digest}.so", digest, cdef)
+                    for ext, data in ((".c", source.encode()), (".so", lib),
+                                      (".sha256", _record(key, digest, source, lib).encode())):
+                        write_private(folder / f"rk_{digest}{ext}", data)
+                except OSError as exc:                    # full, read-only, vanished: the library still loads
+                    fault(folder, exc.strerror or str(exc))
+        return _load_private(digest, lib, cdef)
 
 
-def _load_private(digest: str, source: str, lib: bytes, cdef: str):
-    folder = private_folder()
-    for ext, data in ((".c", source.encode()), (".so", lib), (".sha256", _record(digest, lib).encode())):
-        write_private(folder / f"rk_{digest}{ext}", data)
-    return _load(folder / f"rk_{digest}.so", digest, cdef)
+def _load_private(digest: str, lib: bytes, cdef: str):
+    """Load the library's (verified or just built) bytes from a copy in this process's private folder."""
+    path = private_folder() / f"rk_{digest}.so"
+    if not path.exists():
+        write_private(path, lib)
+    return _load(path, digest, cdef)
 
 
 def _load(path: Path, digest: str, cdef: str):

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ...base.errors import InputError
+from ...base.outfile import unique_columns
 from ..compiled import batch
 from ..figure import save_figure
 from .tables import write_csv, write_parquet, write_table
@@ -54,21 +55,16 @@ class SweepResult:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The table: one column per input, parameter, event time and state, final time and state, status."""
-        cols: dict[str, np.ndarray] = {"run": np.arange(len(self))}
-        for j, name in enumerate(self.layout.parameters):
-            cols[name] = self.params[:, j]
-        for name, values in self.inputs.items():
-            if name not in cols:
-                cols[name] = values
+        pairs = [("run", np.arange(len(self)))]
+        pairs += [(name, self.params[:, j]) for j, name in enumerate(self.layout.parameters)]
+        pairs += [(name, v) for name, v in self.inputs.items() if name not in self.layout.parameters]
         for k, ev in enumerate(self.result.event_names):
-            cols[f"{ev}: t"] = self.result.event_t[:, k]
-            for i, lab in enumerate(self.layout.labels):
-                cols[f"{ev}: {lab}"] = self.result.event_y[:, k, i]
-        cols["end: t"] = self.result.t_end
-        for i, lab in enumerate(self.layout.labels):
-            cols[f"end: {lab}"] = self.result.y_end[:, i]
-        cols["status"] = status_text(self.result.status)
-        return cols
+            pairs.append((f"{ev}: t", self.result.event_t[:, k]))
+            pairs += [(f"{ev}: {lab}", self.result.event_y[:, k, i]) for i, lab in enumerate(self.layout.labels)]
+        pairs.append(("end: t", self.result.t_end))
+        pairs += [(f"end: {lab}", self.result.y_end[:, i]) for i, lab in enumerate(self.layout.labels)]
+        pairs.append(("status", status_text(self.result.status)))
+        return unique_columns(pairs)        # a parameter named run or status, an event named end: refused
 
     def metadata(self) -> dict[str, str]:
         """What a Parquet table keeps beside its columns: the system, the backend, the events."""
