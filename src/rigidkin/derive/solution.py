@@ -47,8 +47,8 @@ from .evaluation import reactions_at
 from .keyed import keyed, to_ours
 from .kinematics import linear_form
 from .mode import ModeSetup
-from .to_sympy import Bridge
 from .regime import Condition, Deferred, LazyMap, Regime  # noqa: F401 (Condition, LazyMap: re-exported)
+from .to_sympy import Bridge
 
 t = dynamicsymbols._t
 

@@ -1,0 +1,242 @@
+"""The bridge to sympy.physics.mechanics, PyDy, scipy and pandas (issue 33, point 8).
+
+References: KanesMethod built by hand for a rod pendulum and a double pendulum (mass matrix and forcing
+term for term); scipy's solve_ivp on ``Solution.rhs()`` against rigidkin's own simulation; the result's
+own histories for ``to_pandas`` and the drawn lines.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import matplotlib
+import numpy as np
+import pytest
+import sympy as sp
+import sympy.physics.mechanics as me
+from scipy.integrate import solve_ivp
+
+import rigidkin as rk
+from rigidkin.base.errors import InputError
+from rigidkin.numeric.simulate import simulate
+
+matplotlib.use("Agg")
+t = rk.t
+
+
+def pendulum(n: int) -> rk.System:
+    """n uniform rods (mass m, length l) in a chain, absolute angles from the downward vertical, pinned."""
+    s = rk.System(f"pendulum{n}")
+    m, l = s.parameter("m", "kg", value=1.2), s.parameter("l", "m", value=0.8)
+    g = s.parameter("g", "m/s^2", value=9.81)
+    top, above = s.origin, None
+    for i in range(1, n + 1):
+        th = s.coordinate(f"theta{i}", "from the downward vertical, counter-clockwise", initial=0.4 * i, rate=0.1)
+        R = s.frame(f"R{i}", angle=th)
+        G = s.point(f"G{i}", top, -l / 2 * R.y)
+        rod = s.body(f"rod{i}", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=G)
+        s.pin(f"P{i - 1}", top, rod, above)
+        top, above = s.point(f"P{i}", top, -l * R.y, body=rod), rod
+    s.gravity(g)
+    return s
+
+
+def kanes_method(n: int):
+    """The same chain with sympy.physics.mechanics alone: KanesMethod with u_i = q̇_i."""
+    m, l, g = sp.symbols("m l g")
+    q = me.dynamicsymbols(f"theta1:{n + 1}")
+    u = me.dynamicsymbols(f"u1:{n + 1}")
+    N = me.ReferenceFrame("N")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    top, bodies, loads = O, [], []
+    for i in range(n):
+        R = N.orientnew(f"R{i}", "Axis", [q[i], N.z])
+        R.set_ang_vel(N, u[i] * N.z)
+        G = top.locatenew(f"G{i}", -l / 2 * R.y)
+        G.v2pt_theory(top, N, R)
+        bodies.append(me.RigidBody(f"rod{i}", G, R, m, (me.inertia(R, m * l**2 / 12, 0, m * l**2 / 12), G)))
+        loads.append((G, -m * g * N.y))
+        nxt = top.locatenew(f"P{i}", -l * R.y)
+        nxt.v2pt_theory(top, N, R)
+        top = nxt
+    km = me.KanesMethod(N, q_ind=q, u_ind=u, kd_eqs=[qi.diff(t) - ui for qi, ui in zip(q, u)])
+    km.kanes_equations(bodies, loads)
+    return km, q, u
+
+
+@pytest.fixture(scope="module")
+def single():
+    s = pendulum(1)
+    return s, s.solve()
+
+
+@pytest.fixture(scope="module")
+def double():
+    s = pendulum(2)
+    return s, s.solve()
+
+
+# results by key, by name, by sympy's own symbol -------------------------------------------------------
+def test_accelerations_by_key_name_and_dynamicsymbol(single):
+    s, sol = single
+    th = s.coordinates[0]
+    ours = sol.accelerations[th]
+    assert ours.has(sp.sin(th))
+    assert sol.accelerations["theta1"] == ours
+    assert sol.accelerations[me.dynamicsymbols("theta1")] == ours
+    assert me.dynamicsymbols("theta1") != th              # sympy's own symbol is another object: found by name
+    assert "theta1" in sol.accelerations and "theta9" not in sol.accelerations
+    with pytest.raises(KeyError, match="no entry for 'theta9'; the entries are 'theta1'"):
+        sol.accelerations["theta9"]
+    assert sol.accelerations.by_name() == {"theta1": ours}
+
+
+def test_reactions_by_name_and_symbol(single):
+    s, sol = single
+    names = list(sol.reactions)
+    assert names and all(isinstance(k, str) for k in names)
+    for k in names:
+        assert sol.reactions[sp.Symbol(k)] == sol.reactions[k]
+        assert sol.reactions[sp.Symbol(k, real=True)] == sol.reactions[k]
+    assert sol.regime(0).reactions["R_P0y"] == sol.reactions["R_P0y"]
+    with pytest.raises(KeyError, match="reactions: no entry for 'N'"):
+        sol.reactions["N"]
+
+
+def test_rate_relations_by_dot_name():
+    from rigidkin import examples
+
+    sol = examples.build("disk-in-track").solve()
+    (qd,) = list(sol.rate_relations)
+    name = qd.expr.func.__name__
+    assert sol.rate_relations[f"dot({name})"] == sol.rate_relations[qd]
+    assert sol.rate_relations[me.dynamicsymbols(name).diff(t)] == sol.rate_relations[qd]
+    assert sol.relations[name] == sol.relations[qd.expr]
+
+
+# substitutions ---------------------------------------------------------------------------------------
+def test_subs_accepts_names_and_sympy_symbols(single):
+    s, sol = single
+    th = s.coordinates[0]
+    m, l, g = (s.parameters[k] for k in "mlg")
+    a = sol.accelerations[th]
+    expected = a.xreplace({th: sp.Float(0.5), g: 10, l: 2})
+    assert sp.simplify(sol.subs(a, {me.dynamicsymbols("theta1"): 0.5, sp.Symbol("g"): 10, "l": 2}) - expected) == 0
+    assert sp.simplify(sol.subs(a, {"theta1": 0.5, g: 10, l: 2}) - expected) == 0
+    # an expression written with sympy's own symbols means the same quantities
+    user = -3 * sp.Symbol("g") * sp.sin(me.dynamicsymbols("theta1")) / (2 * sp.Symbol("l"))
+    assert sp.simplify(sol.subs(user, {}) - a) == 0
+    rate = sol.subs(th.diff(t) ** 2 + th, {me.dynamicsymbols("theta1").diff(t): 2, "theta1": 1})
+    assert rate == 5
+    with pytest.raises(InputError, match=r"phi\(t\) in the values is no coordinate, rate or parameter"):
+        sol.subs(a, {me.dynamicsymbols("phi"): 1})
+
+
+def test_reactions_at_with_sympy_symbols(single):
+    s, sol = single
+    th = s.coordinates[0]
+    ours = sol.reactions_at({th: 0.3, th.diff(t): 1.5})
+    theirs = sol.reactions_at({me.dynamicsymbols("theta1"): 0.3, "dot(theta1)": 1.5})
+    assert ours == pytest.approx(theirs, rel=1e-14)
+    # by hand: the rod's centre on a circle of radius l/2; R_y − m g = m (l/2)(θ̈ sin θ + θ̇² cos θ)
+    m, l, g = 1.2, 0.8, 9.81
+    acc = -3 * g * np.sin(0.3) / (2 * l)
+    assert ours["R_P0y"] == pytest.approx(m * g + m * l / 2 * (acc * np.sin(0.3) + 1.5**2 * np.cos(0.3)), rel=1e-12)
+    with pytest.raises(InputError, match="no coordinate, rate or parameter"):
+        sol.reactions_at({"theta2": 0.3})
+
+
+# sympy.physics.mechanics ---------------------------------------------------------------------------
+@pytest.mark.parametrize("n", [1, 2])
+def test_to_sympy_equals_kanes_method(n, single, double):
+    s, sol = single if n == 1 else double
+    km, q, u = kanes_method(n)
+    form = sol.to_sympy()
+    assert list(form.q) == list(q)                       # sympy's own dynamicsymbols, by the same names
+    to_ours = dict(zip(u, form.u))
+    M = km.mass_matrix.xreplace(to_ours)
+    f = km.forcing.xreplace({**{ui.diff(t): v.diff(t) for ui, v in to_ours.items()}, **to_ours})
+    assert sp.simplify(form.mass_matrix - M) == sp.zeros(n, n)
+    assert sp.simplify(form.forcing - f) == sp.zeros(n, 1)
+    Mf = km.mass_matrix_full.xreplace(to_ours)
+    ff = km.forcing_full.xreplace(to_ours)
+    assert sp.simplify(form.mass_matrix_full - Mf) == sp.zeros(2 * n, 2 * n)
+    assert sp.simplify(form.forcing_full - ff) == sp.zeros(2 * n, 1)
+    kd = {k: v.xreplace(to_ours) for k, v in km.kindiffdict().items()}
+    assert kd == {qi.diff(t): v for qi, v in zip(form.q, form.qdot)}
+    assert list(form.kdes) == [qi.diff(t) - v for qi, v in zip(form.q, form.u)]
+
+
+def test_to_sympy_keeps_assumptions_when_asked(single):
+    s, sol = single
+    form = sol.to_sympy(assumptions=True)
+    assert form.q == s.coordinates
+    assert form.mass_matrix.free_symbols >= {s.parameters["m"], s.parameters["l"]}
+
+
+# scipy ---------------------------------------------------------------------------------------------
+def test_rhs_with_solve_ivp_matches_simulate(double):
+    s, sol = double
+    rhs = sol.rhs()
+    assert rhs.states == ("theta1", "theta2", "dot(theta1)", "dot(theta2)")
+    assert rhs.parameters == ("m", "l", "g")
+    res = simulate(s, 1.5, rtol=1e-11, atol=1e-12)
+    out = solve_ivp(rhs, (0, 1.5), rhs.initial, args=(rhs.values,), t_eval=res.t, rtol=1e-11, atol=1e-12,
+                    method="DOP853")
+    for i, name in enumerate(rhs.states):
+        assert np.max(np.abs(out.y[i] - res[name])) < 1e-7, name
+    # other parameters: a longer rod swings more slowly (the ratio of the small-angle frequencies)
+    y0 = np.array([0.01, 0.0, 0.0, 0.0])
+    a1 = rhs(0.0, y0, [1.2, 0.8, 9.81])[2]
+    a2 = rhs(0.0, y0, [1.2, 3.2, 9.81])[2]
+    assert a1 / a2 == pytest.approx(4.0, rel=1e-12)
+    with pytest.raises(InputError, match="takes 3 parameters"):
+        rhs(0.0, y0, [1.0])
+
+
+# pandas and plots ----------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def run(single):
+    s, _ = single
+    return simulate(s, 1.0, n_points=101)
+
+
+def test_to_pandas_holds_the_histories(run):
+    pytest.importorskip("pandas")
+    df = run.to_pandas()
+    assert df.index.name == "t"
+    np.testing.assert_array_equal(df.index.to_numpy(), run.t)
+    for k, v in run.columns().items():
+        if k != "t":
+            np.testing.assert_array_equal(df[k].to_numpy(), v)
+    assert set(df["mode"]) == {s.description for s in run.segments}
+
+
+def test_to_pandas_without_pandas_says_so(run, monkeypatch):
+    monkeypatch.setitem(sys.modules, "pandas", None)
+    with pytest.raises(ImportError, match="to_pandas\\(\\) needs pandas, which is not installed"):
+        run.to_pandas()
+
+
+def test_plot_into_axes_chosen_quantities(run, single, tmp_path):
+    import matplotlib.pyplot as plt
+
+    s, _ = single
+    th = s.coordinates[0]
+    fig, ax = plt.subplots()
+    try:
+        back = run.plot(ax=ax, quantities=["theta1", th.diff(t), me.dynamicsymbols("theta1"), "E"])
+        assert back is fig
+        lines = ax.get_lines()
+        assert [ln.get_label() for ln in lines if not ln.get_label().startswith("_")] == [
+            "theta1 [rad]", "dtheta1/dt [rad/s]", "theta1 [rad]", "E [J]"]
+        np.testing.assert_array_equal(lines[0].get_ydata(), run["theta1"])
+        np.testing.assert_array_equal(lines[1].get_ydata(), run["dot(theta1)"])
+        np.testing.assert_array_equal(lines[3].get_ydata(), run["E"])
+    finally:
+        plt.close(fig)
+    fig2 = run.plot(tmp_path / "r.png", quantities=["R_P0x", "R_P0y"])
+    assert (tmp_path / "r.png").stat().st_size > 1000 and fig2.axes[0].get_ylabel() == "[N or N·m]"
+    with pytest.raises(InputError, match="'psi' is no history of this simulation"):
+        run.plot(quantities=["psi"])
