@@ -175,6 +175,38 @@ def test_to_sympy_keeps_assumptions_when_asked(single):
     assert form.mass_matrix.free_symbols >= {s.parameters["m"], s.parameters["l"]}
 
 
+def test_sympy_system_gives_kanes_equations(double):
+    s, sol = double
+    ms = sol.to_sympy_system()
+    ms.validate_system()
+    ms.form_eoms()
+    form = sol.to_sympy(assumptions=True)
+    assert list(ms.q) == list(s.coordinates) and list(ms.u) == list(form.u)
+    assert sp.simplify(ms.mass_matrix - form.mass_matrix) == sp.zeros(2, 2)
+    assert sp.simplify(ms.forcing - form.forcing) == sp.zeros(2, 1)
+    # and the hand-built KanesMethod of the same chain, in sympy's plain symbols
+    km, q, u = kanes_method(2)
+    plain = sol.to_sympy()
+    assert sp.simplify(plain.mass_matrix - km.mass_matrix.xreplace(dict(zip(u, plain.u)))) == sp.zeros(2, 2)
+
+
+def test_sympy_system_with_a_rolling_constraint():
+    """The disk rolling in a track: φ's speed dependent, eliminated by KanesMethod from the velocity constraint."""
+    from rigidkin import examples
+
+    sol = examples.build("disk-in-track").solve()
+    ms = sol.to_sympy_system()
+    ms.form_eoms()
+    assert len(ms.u_dep) == 1
+    th = sol.coordinates[0]
+    back = {u: q.diff(t) for q, u in zip(ms.q, ms.u)}
+    rhs = ms.rhs()
+    a = rhs[len(ms.q) + list(ms.u).index(sol.to_sympy(assumptions=True).u[0])].xreplace(back)
+    assert sp.simplify(a - sol.accelerations[th]) == 0
+    form = sol.to_sympy()
+    assert [q.func.__name__ for q in form.q] == ["theta"]          # φ follows from θ (the integrated relation)
+
+
 # scipy ---------------------------------------------------------------------------------------------
 def test_rhs_with_solve_ivp_matches_simulate(double):
     s, sol = double

@@ -52,6 +52,11 @@ class Bridge:
         symbols (real coordinates, positive parameters) instead of sympy's plain ones."""
         return kane_form(self, regime, assumptions)
 
+    def to_sympy_system(self, regime: int | None = None):
+        """The model as a ``sympy.physics.mechanics.System`` (bodies, loads, q, u, kdes, velocity constraints),
+        in rigidkin's symbols; ``form_eoms()`` gives KanesMethod's equations of it."""
+        return mechanics_system(self, regime)
+
     def rhs(self, regime: int | None = None) -> NumericRHS:
         """The numeric right-hand side ``rhs(t, y, p)`` for scipy's ``solve_ivp`` and PyDy (a :class:`NumericRHS`)."""
         return numeric_rhs(self, regime)
@@ -150,6 +155,47 @@ def kane_form(solution, regime: int | None = None, assumptions: bool = False) ->
         M, f = M.applyfunc(plain), f.applyfunc(plain)
         qs, us, qdot, kdes = ([plain(e) for e in seq] for seq in (qs, us, qdot, kdes))
     return KaneForm(tuple(qs), tuple(us), tuple(kdes), M, f, tuple(qdot), dict(sub))
+
+
+def mechanics_system(solution, regime: int | None = None):
+    """A ``sympy.physics.mechanics.System`` of the solution's model in its mode: every coordinate, the speeds
+    u_i = q̇_i (dependent ones where the mode's constraint rows relate the rates, handed over as velocity
+    constraints), each body as a RigidBody, each load (gravity and springs included) as a force or torque.
+    The bodies and loads are those of the Kane cross-check (laws/mechanics_model.py); a load that depends on a
+    reaction (Coulomb friction set by a normal force) is refused, as KanesMethod eliminates the reactions."""
+    from sympy.physics.mechanics import Force, Point, Torque
+    from sympy.physics.mechanics import System as MechanicsSystem
+
+    from .laws.mechanics_model import build
+
+    reg = _pick(solution, regime)
+    setup = solution.setup
+    if getattr(solution.system, "speed_groups", None):
+        raise RigidkinError("this system's speeds are angular-velocity components (q̇ = W(q) u), not u = q̇: "
+                            "its sympy System is not built here.", where=solution.system.name,
+                            hint="to_sympy() gives the mass matrix and forcing in rigidkin's own speeds.")
+    model = build(setup, "forces", "to_sympy_system")
+    signs = dict(reg.signs)
+    qs = list(solution.system.coordinates)
+    us = [dynamicsymbols(f"u_{q.func.__name__}", real=True) for q in qs]
+    ind = set(solution.coordinates)
+    to_u = {q.diff(t): u for q, u in zip(qs, us)}
+    N = model.frame
+    O = Point("O")
+    O.set_vel(N, 0)
+    ms = MechanicsSystem(N, O)
+    ms.add_coordinates(*qs)
+    ms.add_speeds(*[u for q, u in zip(qs, us) if q in ind])
+    dep = [u for q, u in zip(qs, us) if q not in ind]
+    if dep:
+        ms.add_speeds(*dep, independent=False)
+        vc = [sp.sympify(r.velocity).xreplace(signs).xreplace(to_u) for r in model.rows][:len(dep)]
+        ms.add_nonholonomic_constraints(*vc)
+    ms.add_kdes(*[q.diff(t) - u for q, u in zip(qs, us)])
+    ms.add_bodies(*model.bodies)
+    ms.add_loads(*[(Torque if not isinstance(where, Point) else Force)(where, vec.subs(signs) if signs else vec)
+                   for where, vec in model.loads])
+    return ms
 
 
 @dataclass
