@@ -272,3 +272,24 @@ def test_plot_into_axes_chosen_quantities(run, single, tmp_path):
     assert (tmp_path / "r.png").stat().st_size > 1000 and fig2.axes[0].get_ylabel() == "[N or N·m]"
     with pytest.raises(InputError, match="'psi' is no history of this simulation"):
         run.plot(quantities=["psi"])
+
+
+def test_sweep_to_pandas_holds_the_table(monkeypatch):
+    pytest.importorskip("pandas")
+    from rigidkin import examples
+    from rigidkin.numeric.sweeps.sweep import sweep
+
+    runs = sweep(examples.build("ladder"), {"theta": (0.2, 1.0, 3)}, stop_at="N_A")
+    df = runs.to_pandas()
+    cols = runs.columns()
+    assert df.index.name == "run" and list(df.index) == [0, 1, 2]
+    assert list(df.columns) == [k for k in cols if k != "run"]
+    for k, v in cols.items():
+        if k != "run":
+            assert [str(a) for a in df[k]] == [str(b) for b in v], k
+    # the ladder leaves the wall where cos θ = (2/3) cos θ0 (card ladder (b)), each run from rest
+    th0, th = df["theta"].to_numpy(), df["N_A: theta"].to_numpy()
+    np.testing.assert_allclose(np.cos(th), 2 / 3 * np.cos(th0), atol=1e-6)
+    monkeypatch.setitem(sys.modules, "pandas", None)
+    with pytest.raises(ImportError, match="needs pandas"):
+        runs.to_pandas()
