@@ -293,3 +293,16 @@ def test_sweep_to_pandas_holds_the_table(monkeypatch):
     monkeypatch.setitem(sys.modules, "pandas", None)
     with pytest.raises(ImportError, match="needs pandas"):
         runs.to_pandas()
+
+
+def test_histories_by_symbol(run, single):
+    s, _ = single
+    th = s.coordinates[0]
+    np.testing.assert_array_equal(run[th], run["theta1"])
+    np.testing.assert_array_equal(run[me.dynamicsymbols("theta1")], run["theta1"])
+    np.testing.assert_array_equal(run[me.dynamicsymbols("theta1").diff(t)], run["dot(theta1)"])
+    np.testing.assert_array_equal(run[sp.Symbol("R_P0y")], run["R_P0y"])
+    np.testing.assert_array_equal(run.q[th], run.y[:, 0])
+    np.testing.assert_array_equal(run.rates[th.diff(t)], run.y[:, 1])
+    with pytest.raises(KeyError, match="coordinates: no entry for 'psi'"):
+        run.q["psi"]

@@ -154,6 +154,15 @@ def _show(key) -> str:
     return name if order == 0 else (f"dot({name})" if order == 1 else f"ddot({name})")
 
 
+def history_name(key) -> str:
+    """The name of a history a key means: θ(t) or ``dynamicsymbols('theta')`` → ``'theta'``, θ̇ → ``'dot(theta)'``."""
+    if isinstance(key, str):
+        return key
+    if key_name(key) is None:
+        raise KeyLookupError(f"a history is found by a name, a coordinate q(t), its rate or a symbol, not {key!r}.")
+    return _show(key)
+
+
 def keyed(mapping, what: str) -> Keyed:
     """``mapping`` as a :class:`Keyed` (kept as it is when it is one already)."""
     if isinstance(mapping, Keyed):

@@ -21,6 +21,7 @@ import numpy as np
 from ..base import display
 from ..base.outfile import write_text, writing
 from ..base.textsafe import safe_csv_cell
+from ..derive.keyed import Keyed, history_name
 from .figure import plot_quantities, plot_result
 from .rhs import SimulationError
 from .state import StateLayout, rate_name
@@ -109,16 +110,21 @@ class SimulationResult:
 
     # access ------------------------------------------------------------------------------------
     @property
-    def q(self) -> dict:
-        return {n: self.y[:, i] for i, n in enumerate(self.layout.names)}
+    def q(self) -> Keyed:
+        """Coordinate histories by name (``'theta'``), by q(t) or by sympy's own dynamicsymbol."""
+        return Keyed({n: self.y[:, i] for i, n in enumerate(self.layout.names)}, what="coordinates")
 
     @property
-    def rates(self) -> dict:
+    def rates(self) -> Keyed:
+        """Rate histories by ``'dot(theta)'``, by q̇(t) or by sympy's own derivative."""
         n = self.layout.n
-        return {rate_name(nm): self.y[:, n + i] for i, nm in enumerate(self.layout.names)}
+        return Keyed({rate_name(nm): self.y[:, n + i] for i, nm in enumerate(self.layout.names)}, what="rates")
 
-    def __getitem__(self, name: str) -> np.ndarray:
-        """A history by name: ``theta``, ``dot(theta)``, a reaction, ``T``, ``U``, ``E``, ``W``."""
+    def __getitem__(self, name) -> np.ndarray:
+        """A history by name: ``theta``, ``dot(theta)``, a reaction, ``T``, ``U``, ``E``, ``W``; or by symbol: q(t),
+        q̇(t), sympy's own ``dynamicsymbols`` of the same name, ``Symbol('N')``."""
+        if not isinstance(name, str):
+            name = history_name(name)
         if name in self.reactions:
             return self.reactions[name]
         if name in self.energy:
