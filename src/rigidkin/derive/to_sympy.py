@@ -98,6 +98,14 @@ class KaneForm:
         return sp.Matrix([*self.qdot, *self.mass_matrix.LUsolve(self.forcing)])
 
 
+def _plain_speeds(solution) -> None:
+    """Refuse a system whose speeds are angular-velocity components (q̇ = W(q) w): here u = q̇."""
+    if getattr(solution.system, "speed_groups", None):
+        raise RigidkinError("this system's speeds are angular-velocity components (q̇ = W(q) w), not u = q̇; the "
+                            "KanesMethod form and rhs(t, y, p) here take u = q̇.", where=solution.system.name,
+                            hint="rigidkin.numeric.rhs.make_rhs(system) gives dy/dt for y = (q, q̇) of such a system.")
+
+
 def _pick(solution, regime):
     return solution._one() if regime is None else solution.regime(regime)
 
@@ -127,6 +135,7 @@ def _plain(expr_syms) -> dict:
 def kane_form(solution, regime: int | None = None, assumptions: bool = False) -> KaneForm:
     """The KanesMethod form of one regime of ``solution`` (see the module's docstring)."""
     reg = _pick(solution, regime)
+    _plain_speeds(solution)
     ind, dep = _integrated(solution)
     us = [dynamicsymbols(f"u_{q.func.__name__}", real=True) for q in ind]
     to_u = {q.diff(t): u for q, u in zip(ind, us)}
@@ -170,10 +179,7 @@ def mechanics_system(solution, regime: int | None = None):
 
     reg = _pick(solution, regime)
     setup = solution.setup
-    if getattr(solution.system, "speed_groups", None):
-        raise RigidkinError("this system's speeds are angular-velocity components (q̇ = W(q) u), not u = q̇: "
-                            "its sympy System is not built here.", where=solution.system.name,
-                            hint="to_sympy() gives the mass matrix and forcing in rigidkin's own speeds.")
+    _plain_speeds(solution)
     model = build(setup, "forces", "to_sympy_system")
     signs = dict(reg.signs)
     qs = list(solution.system.coordinates)
