@@ -218,6 +218,10 @@ def test_rhs_with_solve_ivp_matches_simulate(double):
                     method="DOP853")
     for i, name in enumerate(rhs.states):
         assert np.max(np.abs(out.y[i] - res[name])) < 1e-7, name
+    from scipy.integrate import odeint
+
+    ys = odeint(rhs.for_odeint(), rhs.initial, res.t, args=(rhs.values,), rtol=1e-11, atol=1e-12)
+    assert np.max(np.abs(ys[:, 0] - res["theta1"])) < 1e-7
     # other parameters: a longer rod swings more slowly (the ratio of the small-angle frequencies)
     y0 = np.array([0.01, 0.0, 0.0, 0.0])
     a1 = rhs(0.0, y0, [1.2, 0.8, 9.81])[2]
@@ -306,3 +310,29 @@ def test_histories_by_symbol(run, single):
     np.testing.assert_array_equal(run.rates[th.diff(t)], run.y[:, 1])
     with pytest.raises(KeyError, match="coordinates: no entry for 'psi'"):
         run.q["psi"]
+
+
+def test_regimes_are_picked_for_sympy_and_scipy():
+    """A disk sliding on an incline (slip-to-roll): sliding friction µN makes two regimes; by hand, sliding
+    forward, ẍ = g (sin β − µ cos β) and φ̈ = 2 µ g cos β / r (r µ m g cos β = ½ m r² φ̈)."""
+    from rigidkin import examples
+    from rigidkin.base.errors import RegimeError
+
+    s = examples.build("slip-to-roll")
+    sol = s.solve()
+    with pytest.raises(RegimeError, match="2 regimes"):
+        sol.to_sympy()
+    with pytest.raises(RegimeError, match="2 regimes"):
+        sol.rhs()
+    forward = next(i for i, r in enumerate(sol.regimes) if r.conditions[0].relation == ">")
+    rhs = sol.rhs(regime=forward)
+    assert rhs.states == ("x", "phi", "dot(x)", "dot(phi)")
+    vals = dict(zip(rhs.parameters, rhs.values))
+    g, mu, beta, r = vals["g"], vals["mu"], vals["beta"], vals["r"]
+    dy = rhs(0.0, [0.0, 0.0, 1.0, 0.0])                      # ẋ = 1 > r φ̇ = 0: sliding forward
+    assert dy[:2] == pytest.approx([1.0, 0.0])
+    assert dy[2] == pytest.approx(g * (np.sin(beta) - mu * np.cos(beta)), rel=1e-12)
+    assert dy[3] == pytest.approx(2 * mu * g * np.cos(beta) / r, rel=1e-12)
+    form = sol.to_sympy(regime=forward)
+    a = [sp.sympify(e).subs(dict(zip(sp.symbols("m r beta g mu d"), rhs.values))) for e in form.rhs()[2:]]
+    assert [float(v) for v in a] == pytest.approx(list(dy[2:]), rel=1e-12)

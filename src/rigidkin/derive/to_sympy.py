@@ -232,6 +232,11 @@ class NumericRHS:
                                np.asarray(f, dtype=float).reshape(n)) if n else np.zeros(0)
         return np.concatenate([np.asarray(qdot, dtype=float).reshape(-1), udot])
 
+    def for_odeint(self):
+        """The same right-hand side in the argument order of scipy's ``odeint`` and PyDy's generated ODE
+        functions, ``f(y, t, p)``."""
+        return lambda y, t_, p=None: self(t_, y, p)
+
 
 def numeric_rhs(solution, regime: int | None = None) -> NumericRHS:
     """The numeric right-hand side of one regime (see :class:`NumericRHS`)."""
