@@ -325,6 +325,9 @@ def test_regimes_are_picked_for_sympy_and_scipy():
     with pytest.raises(RegimeError, match="2 regimes"):
         sol.rhs()
     forward = next(i for i, r in enumerate(sol.regimes) if r.conditions[0].relation == ">")
+    # regime_at by names and by sympy's own symbols: ẋ − r φ̇ = 1 > 0 is sliding forward
+    assert sol.regime_at({"dot(x)": 1.0, me.dynamicsymbols("phi").diff(t): 0.0}) is sol.regimes[forward]
+    assert sol.regime_at({"dot(x)": -1.0, "dot(phi)": 0.0}) is sol.regimes[1 - forward]
     rhs = sol.rhs(regime=forward)
     assert rhs.states == ("x", "phi", "dot(x)", "dot(phi)")
     vals = dict(zip(rhs.parameters, rhs.values))
