@@ -59,7 +59,9 @@ class Solution(Bridge):
 
     ``eom`` (each ``= 0``), ``accelerations`` (coordinate → q̈), ``reactions`` (name → expression
     of the state), ``mass_matrix`` and ``forcing`` refer to the single regime; with several regimes
-    pick one with :meth:`regime` (they raise :class:`RegimeError` otherwise).
+    pick one with :meth:`regime` (they raise :class:`RegimeError` otherwise).  Every mapping is found by
+    its key, by name (``'theta'``, ``'N'``, ``'dot(phi)'``) or by sympy's own symbol (derive/keyed.py);
+    ``subs``, ``to_sympy``, ``to_sympy_system`` and ``rhs`` hand it to sympy, PyDy and scipy.
     """
 
     system: object
