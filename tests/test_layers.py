@@ -49,6 +49,8 @@ DOORS = [
      "Solution.check compares the solution with every other law (the laws build Solutions)"),
     ("rigidkin.derive.solution", "rigidkin.derive.laws.consistency",
      "Solution.warnings checks dE/dt = ΣP_nc on the solution (the laws build Solutions)"),
+    ("rigidkin.derive.to_sympy", "rigidkin.derive.laws.mechanics_model",
+     "Solution.to_sympy_system builds sympy's System from the bodies and loads of the Kane cross-check"),
     ("rigidkin.base.display", "rigidkin.report.views",
      "the display methods of System, Solution and SimulationResult (str, HTML, LaTeX) are rendered by "
      "report/; every one goes through base.display"),

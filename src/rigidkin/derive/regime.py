@@ -8,12 +8,12 @@ forms of M, f and the equations of motion (bounded simplification), the accelera
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass
 
 import sympy as sp
 
 from ..base.printing import text
+from .keyed import Keyed, keyed
 
 
 @dataclass(frozen=True)
@@ -32,30 +32,12 @@ class Condition:
         return f"{text(self.expr)} {self.relation.replace('>=', '≥').replace('<=', '≤')} 0   ({self.label})"
 
 
-class LazyMap(Mapping):
-    """A read-only mapping computed on first use (accelerations and reactions of large systems)."""
+class LazyMap(Keyed):
+    """A read-only mapping computed on first use (accelerations and reactions of large systems), keyed as
+    :class:`~rigidkin.derive.keyed.Keyed` (by key, by name, by sympy's own symbol)."""
 
-    def __init__(self, compute):
-        self._compute, self._data = compute, None
-
-    def _get(self) -> dict:
-        if self._data is None:
-            self._data = dict(self._compute())
-            self._compute = None
-        return self._data
-
-    def __getitem__(self, key):
-        return self._get()[key]
-
-    def __iter__(self):
-        return iter(self._get())
-
-    def __len__(self):
-        return len(self._get())
-
-    @property
-    def computed(self) -> bool:
-        return self._data is not None
+    def __init__(self, compute, what: str | None = None):
+        super().__init__(compute=compute, what=what)
 
     def __repr__(self) -> str:
         return repr(self._data) if self._data is not None else "LazyMap(<not computed yet>)"
@@ -102,7 +84,8 @@ class Regime:
                  raw_mass_matrix=None, raw_forcing=None):
         d = self.__dict__
         d["conditions"], d["signs"] = tuple(conditions), signs
-        d["accelerations"], d["reactions"] = accelerations, reactions
+        d["accelerations"] = keyed(accelerations, "accelerations (coordinate → q̈)")
+        d["reactions"] = keyed(reactions, "reactions")
         d["_validity"], d["_eom"], d["_mass_matrix"], d["_forcing"] = validity, eom, mass_matrix, forcing
         d["raw_mass_matrix"] = raw_mass_matrix if raw_mass_matrix is not None else mass_matrix
         d["raw_forcing"] = raw_forcing if raw_forcing is not None else forcing

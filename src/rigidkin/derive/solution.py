@@ -44,20 +44,24 @@ from ..model.profiles import arc_margins
 from ..model.speeds import quaternion_groups
 from .determinacy import _determinacy
 from .evaluation import reactions_at
+from .keyed import keyed, to_ours
 from .kinematics import linear_form
 from .mode import ModeSetup
 from .regime import Condition, Deferred, LazyMap, Regime  # noqa: F401 (Condition, LazyMap: re-exported)
+from .to_sympy import Bridge
 
 t = dynamicsymbols._t
 
 
 @dataclass(frozen=True)
-class Solution:
+class Solution(Bridge):
     """The result of a law: equations of motion in normal and mass-matrix form, reactions, regimes.
 
     ``eom`` (each ``= 0``), ``accelerations`` (coordinate → q̈), ``reactions`` (name → expression
     of the state), ``mass_matrix`` and ``forcing`` refer to the single regime; with several regimes
-    pick one with :meth:`regime` (they raise :class:`RegimeError` otherwise).
+    pick one with :meth:`regime` (they raise :class:`RegimeError` otherwise).  Every mapping is found by
+    its key, by name (``'theta'``, ``'N'``, ``'dot(phi)'``) or by sympy's own symbol (derive/keyed.py);
+    ``subs``, ``to_sympy``, ``to_sympy_system`` and ``rhs`` hand it to sympy, PyDy and scipy.
     """
 
     system: object
@@ -71,6 +75,10 @@ class Solution:
     equations: tuple                # the balance equations the law formed (BalanceEquation)
     trace: Trace = field(compare=False)
     setup: ModeSetup = field(compare=False, repr=False)
+
+    def __post_init__(self):            # found by key, by name or by sympy's own symbol (derive/keyed.py)
+        object.__setattr__(self, "relations", keyed(self.relations, "relations (q_d → f(q_i))"))
+        object.__setattr__(self, "rate_relations", keyed(self.rate_relations, "rate relations (q̇_d → ...)"))
 
     # single-regime access -------------------------------------------------------------------
     def _one(self) -> Regime:
@@ -123,7 +131,7 @@ class Solution:
         their declared values): finite wherever the physics is (a numeric solve of the balance equations
         where a closed form has 0/0)."""
 
-        return reactions_at(self, state, values, regime)
+        return reactions_at(self, to_ours(self.system, state, "the state"), to_ours(self.system, values), regime)
 
     def regime(self, index: int = 0) -> Regime:
         return self.regimes[index]
@@ -135,7 +143,7 @@ class Solution:
         values.  Where a condition is exactly zero (a slip speed at a start from rest) the regime is the
         one whose condition its rate of change satisfies (the slip that starts).
         """
-        values = _complete(self, values)
+        values = _complete(self, to_ours(self.system, values))
         missing = sorted({str(s) for c in (c for r in self.regimes for c in r.conditions)
                           for s in sp.sympify(c.expr).free_symbols} - {str(k) for k in values} - {"t"})
         if missing:

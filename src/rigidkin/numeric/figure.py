@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..base.errors import InputError
 from ..base.outfile import OutputError, check_target, writing
 from ..base.textsafe import terminal_safe
 
@@ -124,6 +125,69 @@ def plot_result(result, path=None, title: str | None = None):
     foot.append(f"energy drift {result.energy_drift:.2g} (relative, {result.energy_balance}); "
                 f"largest constraint residual {result.max_residual:.2g}; {result.status}: {result.message}")
     fig.text(0.01, 0.0, "\n".join(foot), fontsize=8, va="top", ha="left", family="monospace", wrap=True)
+    if path is not None:
+        save_figure(fig, path, dpi=110, bbox_inches="tight")
+    return fig
+
+
+def _series_name(result, key) -> str:
+    """The history a key names: ``'theta'``, ``'dot(theta)'``, a reaction, ``'E'``, or the sympy symbol of one."""
+    from ..derive.keyed import key_name
+
+    n = key_name(key)
+    if n is not None and n[1] in (0, 1):
+        name = n[0] if n[1] == 0 else f"dot({n[0]})"
+        if name in result.columns():
+            return name
+    known = [k for k in result.columns() if k != "t"]
+    raise InputError(f"{key!r} is no history of this simulation.", where="plot(quantities=...)",
+                     hint=f"Choose among: {', '.join(known)}.")
+
+
+def _unit(result, name: str) -> str:
+    kinds = result.kinds
+    if name in result.q:
+        return _UNITS.get(kinds.get(name, "other"), ("", ""))[0]
+    if name in result.rates:
+        return _UNITS.get(kinds.get(name[4:-1], "other"), ("", ""))[1]
+    if name in result.energy:
+        return "J"
+    return "N or N·m" if name in result.reactions else ""
+
+
+def plot_quantities(result, quantities=None, ax=None, path=None, title: str | None = None):
+    """The histories named in ``quantities`` (default: the coordinates) against time, in ``ax`` if given.
+
+    Modes are shaded and events drawn as dotted lines, as in the full figure; returns the figure.
+    """
+    from matplotlib.figure import Figure
+
+    names = [_series_name(result, k) for k in (quantities if quantities is not None else result.layout.names)]
+    if ax is None:
+        fig = Figure(figsize=(8, 4.5), layout="constrained")
+        ax = fig.subplots()
+    else:
+        fig = ax.figure
+    cols, seg_idx, t = result.columns(), result.segment, result.t
+    for j, n in enumerate(names):
+        for s in np.unique(seg_idx):           # one line per segment: no line across a jump
+            m = seg_idx == s
+            lab = _label(greek(n) if not n.startswith("dot(") else f"d{greek(n[4:-1])}/dt", _unit(result, n))
+            ax.plot(t[m], cols[n][m], color=f"C{j % 10}", lw=1.4, label=lab if s == seg_idx[0] else None)
+    units = {_unit(result, n) for n in names}
+    ax.set_ylabel(f"[{units.pop()}]" if len(units) == 1 and "" not in units else "value")
+    ax.set_xlabel("t [s]")
+    shades = ["#f2f2f2", "#dde8f5", "#f7e6d5", "#e2f0dc", "#efe0f0", "#f5f1d0"]
+    desc = list(dict.fromkeys(s.description for s in result.segments))
+    if len(desc) > 1:
+        for s in result.segments:
+            ax.axvspan(s.t0, s.t1, color=shades[desc.index(s.description) % len(shades)], zorder=0, lw=0)
+    for e in result.events:
+        ax.axvline(e.t, color="0.25", ls=":", lw=1.0)
+    ax.legend(loc="best", fontsize=8, framealpha=0.85)
+    ax.grid(True, alpha=0.3)
+    if title:
+        ax.set_title(terminal_safe(title, newlines=False))
     if path is not None:
         save_figure(fig, path, dpi=110, bbox_inches="tight")
     return fig

@@ -21,7 +21,8 @@ import numpy as np
 from ..base import display
 from ..base.outfile import unique_columns, write_text, writing
 from ..base.textsafe import safe_csv_cell
-from .figure import plot_result
+from ..derive.keyed import Keyed, history_name
+from .figure import plot_quantities, plot_result
 from .rhs import SimulationError
 from .state import StateLayout, rate_name
 
@@ -112,17 +113,22 @@ class SimulationResult:
 
     # access ------------------------------------------------------------------------------------
     @property
-    def q(self) -> dict:
-        return {n: self.y[:, i] for i, n in enumerate(self.layout.names)}
+    def q(self) -> Keyed:
+        """Coordinate histories by name (``'theta'``), by q(t) or by sympy's own dynamicsymbol."""
+        return Keyed({n: self.y[:, i] for i, n in enumerate(self.layout.names)}, what="coordinates")
 
     @property
-    def rates(self) -> dict:
+    def rates(self) -> Keyed:
+        """Rate histories by ``'dot(theta)'``, by q̇(t) or by sympy's own derivative."""
         n = self.layout.n
-        return {rate_name(nm): self.y[:, n + i] for i, nm in enumerate(self.layout.names)}
+        return Keyed({rate_name(nm): self.y[:, n + i] for i, nm in enumerate(self.layout.names)}, what="rates")
 
-    def __getitem__(self, name: str) -> np.ndarray:
+    def __getitem__(self, name) -> np.ndarray:
         """A history by name: ``theta``, ``dot(theta)``, a reaction, ``energy: T`` (kinetic), ``energy: U``,
-        ``energy: E``, ``energy: W`` (a bare ``T``, ``U``, ``E``, ``W`` when no reaction has that name)."""
+        ``energy: E``, ``energy: W`` (a bare ``T``, ``U``, ``E``, ``W`` when no reaction has that name); or by
+        symbol: q(t), q̇(t), sympy's own ``dynamicsymbols`` of the same name, ``Symbol('N')``."""
+        if not isinstance(name, str):
+            name = history_name(name)
         if name in self.reactions:
             return self.reactions[name]
         if name.startswith(ENERGY) and name[len(ENERGY):] in self.energy:
@@ -222,10 +228,28 @@ class SimulationResult:
         if buf.tell():
             yield buf.getvalue()
 
-    def plot(self, path=None, title: str | None = None):
-        """A figure of coordinates, rates, reactions and energy with the events marked; saved to ``path``."""
+    def plot(self, path=None, title: str | None = None, *, ax=None, quantities=None):
+        """A figure of coordinates, rates, reactions and energy with the events marked; saved to ``path``.
 
-        return plot_result(self, path, title)
+        ``quantities`` (names such as ``'theta'``, ``'dot(theta)'``, ``'N'``, ``'E'``, or their sympy symbols)
+        draws only those, in one panel; ``ax`` draws into a matplotlib Axes of the caller's figure."""
+
+        if ax is None and quantities is None:
+            return plot_result(self, path, title)
+        return plot_quantities(self, quantities, ax, path, title)
+
+    def to_pandas(self):
+        """The histories as a pandas DataFrame indexed by t: mode, coordinates, rates, reactions, energy: T, U, E, W
+        (an event time appears twice: before and after the jump)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("to_pandas() needs pandas, which is not installed: pip install 'pandas>=2.1' "
+                              "(or to_csv() writes the same table without it).") from None
+        cols = self.columns()
+        modes = [s.description for s in self.segments]
+        data = {"mode": [modes[int(i)] for i in self.segment], **{k: v for k, v in cols.items() if k != "t"}}
+        return pd.DataFrame(data, index=pd.Index(np.asarray(self.t), name="t"))
 
     def _repr_html_(self) -> str:
         return display.render(self, "html")

@@ -87,6 +87,16 @@ class SweepResult:
 
         return write_parquet(self.columns(), path, "the sweep table", self.metadata())
 
+    def to_pandas(self):
+        """The table as a pandas DataFrame, one row per run (indexed by ``run``)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("to_pandas() needs pandas, which is not installed: pip install 'pandas>=2.1' "
+                              "(or to_csv() writes the same table without it).") from None
+        cols = self.columns()
+        return pd.DataFrame({k: v for k, v in cols.items() if k != "run"}, index=pd.Index(cols["run"], name="run"))
+
     def plot(self, path, x: str | None = None, y: str | None = None) -> Path:
         """A figure of one table column against another (default: the first event's time against the first input)."""
         from matplotlib.figure import Figure
