@@ -266,7 +266,7 @@ def test_plot_into_axes_chosen_quantities(run, single, tmp_path):
         assert back is fig
         lines = ax.get_lines()
         assert [ln.get_label() for ln in lines if not ln.get_label().startswith("_")] == [
-            "theta1 [rad]", "dtheta1/dt [rad/s]", "theta1 [rad]", "E [J]"]
+            "theta1 [rad]", "dtheta1/dt [rad/s]", "theta1 [rad]", "energy: E [J]"]
         np.testing.assert_array_equal(lines[0].get_ydata(), run["theta1"])
         np.testing.assert_array_equal(lines[1].get_ydata(), run["dot(theta1)"])
         np.testing.assert_array_equal(lines[3].get_ydata(), run["E"])

@@ -131,7 +131,8 @@ def plot_result(result, path=None, title: str | None = None):
 
 
 def _series_name(result, key) -> str:
-    """The history a key names: ``'theta'``, ``'dot(theta)'``, a reaction, ``'E'``, or the sympy symbol of one."""
+    """The history a key names: ``'theta'``, ``'dot(theta)'``, a reaction, ``'energy: E'`` (``'E'`` where no
+    reaction has that name), or the sympy symbol of one."""
     from ..derive.keyed import key_name
 
     n = key_name(key)
@@ -139,6 +140,8 @@ def _series_name(result, key) -> str:
         name = n[0] if n[1] == 0 else f"dot({n[0]})"
         if name in result.columns():
             return name
+        if f"energy: {name}" in result.columns():     # a bare T, U, E, W: the energy (no reaction has the name)
+            return f"energy: {name}"
     known = [k for k in result.columns() if k != "t"]
     raise InputError(f"{key!r} is no history of this simulation.", where="plot(quantities=...)",
                      hint=f"Choose among: {', '.join(known)}.")
@@ -150,7 +153,7 @@ def _unit(result, name: str) -> str:
         return _UNITS.get(kinds.get(name, "other"), ("", ""))[0]
     if name in result.rates:
         return _UNITS.get(kinds.get(name[4:-1], "other"), ("", ""))[1]
-    if name in result.energy:
+    if name in result.energy or (name.startswith("energy: ") and name[8:] in result.energy):
         return "J"
     return "N or N·m" if name in result.reactions else ""
 
