@@ -39,6 +39,7 @@ class Event:
     mode_before: str
     mode_after: str
     detail: str = ""
+    impact: dict | None = None  # an impact's numbers: impulses per contact, velocity jump, energy change
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "t": self.t, "state": dict(self.state), "kind": self.kind,
@@ -47,6 +48,8 @@ class Event:
             d["state_after"] = dict(self.after)
         if self.detail:
             d["detail"] = self.detail
+        if self.impact is not None:
+            d["impact"] = self.impact
         return d
 
     def __str__(self) -> str:
