@@ -203,7 +203,7 @@ class SimulationResult:
 
         cols = self.columns()
         names = list(cols)
-        modes = [safe_csv_cell(s.description) for s in self.segments]
+        modes = [safe_csv_cell(s.description) for s in self.segments] or ["(no mode: stopped at the start)"]
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow([safe_csv_cell(n) for n in (names[0], "mode", *names[1:])])
