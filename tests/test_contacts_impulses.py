@@ -160,3 +160,66 @@ def test_two_supports_identical_under_three_hash_seeds():
         outs.append(run.stdout)
     assert outs[0].count("impact") >= 10
     assert outs[0] == outs[1] == outs[2]
+
+
+def _sphere_by_hand(m, r, u0, e, mu):
+    """A sphere (I = 2/5 m r²) striking a rough floor z = 0, by hand: P_n = m (1 + e) |v_z|; the slip
+    s = (v_x − r ω_y, v_y + r ω_x) changes by (7/2m) P_t, so it slides (P_t = −µ P_n ŝ) while
+    |s| > (7/2) µ P_n / m, else it sticks (P_t = −(2m/7) s)."""
+    vx, vy, vz, wx, wy, wz = u0
+    I = 0.4 * m * r**2
+    pn = m * (1 + e) * -vz
+    s = np.array([vx - r * wy, vy + r * wx])
+    sliding = np.linalg.norm(s) > 3.5 * mu * pn / m
+    pt = -mu * pn * s / np.linalg.norm(s) if sliding else -2 * m / 7 * s
+    after = np.array([vx + pt[0] / m, vy + pt[1] / m, -e * vz, wx + r * pt[1] / I, wy - r * pt[0] / I, wz])
+    return after, pn, pt, sliding
+
+
+@pytest.mark.parametrize("spin,slides", [((5.0, -60.0, 3.0), True), ((2.0, -5.0, 3.0), False)])
+def test_sphere_striking_a_rough_floor_in_3d_slides_or_sticks_as_by_hand(spin, slides):
+    from rigidkin.numeric.contacts.contact_lcp import ContactRows, impulse_problem
+
+    m, r, e, mu = 0.5, 0.1, 0.6, 0.3
+    I = 0.4 * m * r**2
+    M = np.diag([m, m, m, I, I, I])
+    u0 = np.array([0.8, -0.3, -3.0, *spin])
+    Jn = np.array([0, 0, 1.0, 0, 0, 0])
+    Jt1 = np.array([1.0, 0, 0, 0, -r, 0])
+    Jt2 = np.array([0, 1.0, 0, r, 0, 0])
+    res = impulse_problem(M, u0, [ContactRows("P", Jn, 0.0, Jt1, 0.0, mu, mu, False, e, ((Jt2, 0.0),))])
+    after, pn, pt, sliding = _sphere_by_hand(m, r, u0, e, mu)
+    assert sliding == slides
+    assert res.states["P"] == ("slide+" if slides else "stick")
+    assert np.allclose(res.u, after, rtol=1e-12, atol=1e-12)
+    assert res.normal["P"] == pytest.approx(pn, rel=1e-12)
+    assert res.tangential["P"] == pytest.approx(pt[0], rel=1e-12, abs=1e-14)
+    assert res.further["P"][0] == pytest.approx(pt[1], rel=1e-12, abs=1e-14)
+    assert res.energy_change < 0
+    assert res.count == 1
+
+
+@pytest.mark.parametrize("vx,spin,slides", [(0.2, 0.0, False), (3.0, 0.0, True), (0.5, -150.0, True),
+                                            (0.3, 8.0, False)])
+def test_sphere_dropped_spinning_onto_a_rough_floor_in_3d_rebounds_as_by_hand(vx, spin, slides):
+    """A billiard ball (quaternion, body angular speeds) dropped 5 cm with forward speed and spin onto a
+    rough table, e = 0.5: rebound velocity and spin against :func:`_sphere_by_hand` (sliding or sticking)."""
+    sys.path.insert(0, HERE)
+    from test_friction3d import MU, R, _omega, billiard
+
+    m = 0.17
+    res = simulate(billiard(), 0.11, initial_state={"z": R + 0.05, "dot(x)": vx, "wy": spin}, restitution=0.5,
+                   max_events=3)
+    ev = next(ev for ev in res.events if ev.kind == "impact")
+    w0 = _omega(ev.state)                          # the spin in flight (constant: a sphere, gravity only)
+    u0 = [ev.state["dot(x)"], ev.state["dot(y)"], ev.state["dot(z)"], *w0]
+    after, pn, pt, sliding = _sphere_by_hand(m, R, u0, 0.5, MU)
+    assert sliding == slides
+    assert ev.impact["contacts"]["P"]["state"] == ("slide+" if sliding else "stick")
+    assert ev.impact["contacts"]["P"]["normal_impulse"] == pytest.approx(pn, rel=1e-10)
+    assert math.hypot(*ev.impact["contacts"]["P"]["tangential_impulses"]) == pytest.approx(np.linalg.norm(pt),
+                                                                                          rel=1e-9)
+    for k, v in zip(("dot(x)", "dot(y)", "dot(z)"), after[:3]):
+        assert ev.after[k] == pytest.approx(v, abs=1e-10)
+    assert np.allclose(_omega(ev.after), after[3:], rtol=1e-9, atol=1e-8)
+    assert ev.impact["energy_change"] < 0

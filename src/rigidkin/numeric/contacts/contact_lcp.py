@@ -36,6 +36,7 @@ plastic impact, e = 0, which with Coulomb friction never creates energy).
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -82,6 +83,7 @@ class ImpulseSolution:
     count: int                      # how many candidates were solutions (1: unique)
     indeterminate: tuple = ()       # impulses the impact does not determine (their split is a choice)
     bilateral: dict = field(default_factory=dict)   # impulses of the other constraints (unreduced form)
+    further: dict = field(default_factory=dict)     # 3D: the second tangential impulse per contact
 
 
 class NoImpulseSolution(Exception):
@@ -91,9 +93,16 @@ class NoImpulseSolution(Exception):
 def _options(c: ContactRows) -> tuple[str, ...]:
     if c.Jt is None or c.rolling:
         opts = (STICK, INACTIVE)             # smooth: "stick" stands for active (no tangential row)
+    elif _cone(c):
+        opts = (STICK, SLIDE_POS, INACTIVE)  # 3D: sliding against the direction of the slip after
     else:
         opts = (STICK, SLIDE_POS, SLIDE_NEG, INACTIVE)
     return tuple(o for o in opts if o != INACTIVE) if c.held else opts
+
+
+def _cone(c: ContactRows) -> bool:
+    """A rough contact in 3D: two tangential rows, Coulomb's cone |Λ_t| ≤ µ Λ_n."""
+    return c.Jt is not None and not c.rolling and len(c.extra) > 0
 
 
 def _label(c: ContactRows, i: int) -> str:
@@ -116,7 +125,7 @@ def _least_norm(A: np.ndarray, b: np.ndarray, rtol: float = 1e-10):
     return x, Vt[r:].T
 
 
-def _candidate(E, u0, R, contacts, states):
+def _candidate(E, u0, R, contacts, states, dirs=None):
     """The linear equations of one candidate: unknowns u⁺, the other constraints' impulses and the
     impulses of the active contacts; with the impulses' labels and the inequalities G x ≥ h they must meet."""
     n, k, mr = len(u0), E.shape[0], R.shape[1]
@@ -141,10 +150,17 @@ def _candidate(E, u0, R, contacts, states):
             eqs.append((c.Jt, -c.bt))
             eqs.extend((J, -b_) for J, b_ in c.extra)
             ineq.append(({j0: 1.0}, 0.0))
-            if not c.rolling:                                         # |Λ_t| ≤ µs Λ_n
+            if not c.rolling and not _cone(c):                        # |Λ_t| ≤ µs Λ_n (3D: checked after)
                 ineq.append(({j0: c.mu_s, j0 + 1: -1.0}, 0.0))
                 ineq.append(({j0: c.mu_s, j0 + 1: 1.0}, 0.0))
         else:
+            if _cone(c):                       # Λ_t = −µk Λ_n d, d the slip direction after (iterated)
+                d1, d2 = dirs[c.name]
+                Ce = c.Cextra[0] if c.Cextra else c.extra[0][0]
+                cols.append(Cn - c.mu_k * (d1 * Ct + d2 * Ce))
+                labels.append(_label(c, 0))
+                ineq.append(({j0: 1.0}, 0.0))
+                continue
             sigma = 1.0 if st == SLIDE_POS else -1.0
             cols.append(Cn - sigma * c.mu_k * Ct)                     # Λ_t = −σ µk Λ_n: one unknown
             labels.append(_label(c, 0))
@@ -184,6 +200,46 @@ def _within(G, h, x, N, tol):
     return x1 if np.all(G @ x1 - h >= -2 * tol) else None
 
 
+def _solve_with_directions(E, u0, R, contacts, states, iterations: int = 60):
+    """Solve one candidate; a 3D contact that slides does so against the direction of its slip after the
+    impact, found by iterating from the slip before (for a sphere it does not turn: one step)."""
+    n = len(u0)
+    dirs = {}
+    for c, st in zip(contacts, states):
+        if st == SLIDE_POS and _cone(c):
+            s = np.array([c.Jt @ u0 + c.bt, c.extra[0][0] @ u0 + c.extra[0][1]], dtype=float)
+            if not np.linalg.norm(s) > 0:
+                return None
+            dirs[c.name] = tuple(s / np.linalg.norm(s))
+    for _ in range(iterations if dirs else 1):
+        A, b, G, h, labels = _candidate(E, u0, R, contacts, states, dirs)
+        solved = _least_norm(A, b)
+        if solved is None:
+            return None
+        x, N = solved
+        if not dirs:
+            return x, N, G, h, labels, dirs
+        u, moved = x[:n], 0.0
+        for c in contacts:
+            if c.name in dirs:
+                # the slip after with its change along d taken back: parallel to d at the solution, and
+                # (unlike the slip after itself) a stable iteration; for a sphere it is the slip before
+                d0 = np.array(dirs[c.name])
+                s0 = np.array([c.Jt @ u0 + c.bt, c.extra[0][0] @ u0 + c.extra[0][1]], dtype=float)
+                s = np.array([c.Jt @ u + c.bt, c.extra[0][0] @ u + c.extra[0][1]], dtype=float)
+                s = s + float(d0 @ (s0 - s)) * d0
+                if not np.linalg.norm(s) > 0:
+                    return None
+                d = s / np.linalg.norm(s)
+                moved = max(moved, float(np.max(np.abs(d - d0))))
+                dirs[c.name] = tuple(d)
+        if moved <= 1e-13:
+            break
+    A, b, G, h, labels = _candidate(E, u0, R, contacts, states, dirs)
+    solved = _least_norm(A, b)
+    return None if solved is None else (*solved, G, h, labels, dirs)
+
+
 def impulse_problem(M: np.ndarray, u0: np.ndarray, contacts: list[ContactRows], tol: float = 1e-10,
                     plastic: bool = False, momentum: np.ndarray | None = None,
                     bilateral: tuple | None = None) -> ImpulseSolution:
@@ -200,11 +256,10 @@ def impulse_problem(M: np.ndarray, u0: np.ndarray, contacts: list[ContactRows], 
     speed = max(1.0, float(np.max(np.abs(u0))) if len(u0) else 1.0)
     first, count = None, 0
     for states in itertools.product(*[_options(c) for c in contacts]):
-        A, b, G, h, labels = _candidate(E, u0, R, contacts, states)
-        solved = _least_norm(A, b)
+        solved = _solve_with_directions(E, u0, R, contacts, states)
         if solved is None:
             continue
-        x, N = solved
+        x, N, G, h, labels, dirs = solved
         if N.shape[1] and np.max(np.abs(N[:n])) > 1e-9:
             continue                         # the velocities after are not determined by this candidate
         imp = max(1e-300, float(np.max(np.abs(x[n:]))) if len(x) > n else 0.0)
@@ -213,7 +268,7 @@ def impulse_problem(M: np.ndarray, u0: np.ndarray, contacts: list[ContactRows], 
             continue
         u, lam = x[:n], x[n + mr:]
         ok, j = True, 0
-        normal, tangential, vn_after, vt_after = {}, {}, {}, {}
+        normal, tangential, vn_after, vt_after, further = {}, {}, {}, {}, {}
         for c, st in zip(contacts, states):
             vn0 = float(c.Jn @ u0 + c.bn)
             vn = float(c.Jn @ u + c.bn)
@@ -231,7 +286,17 @@ def impulse_problem(M: np.ndarray, u0: np.ndarray, contacts: list[ContactRows], 
                 j += 1
             elif st == STICK:
                 normal[c.name], tangential[c.name] = ln, float(lam[j + 1])
+                further[c.name] = tuple(float(v) for v in lam[j + 2:j + 2 + len(c.extra)])
+                if _cone(c):                             # Coulomb's cone: |Λ_t| ≤ µs Λ_n
+                    ok &= math.hypot(tangential[c.name], *further[c.name]) <= c.mu_s * ln + tol * imp
                 j += 2 + len(c.extra)
+            elif _cone(c):
+                d1, d2 = dirs[c.name]
+                normal[c.name], tangential[c.name] = ln, -c.mu_k * ln * d1
+                further[c.name] = (-c.mu_k * ln * d2,)
+                ve = float(c.extra[0][0] @ u + c.extra[0][1])
+                ok &= d1 * vt + d2 * ve > tol * speed and abs(d2 * vt - d1 * ve) <= 1e-9 * speed
+                j += 1
             else:
                 sigma = 1.0 if st == SLIDE_POS else -1.0
                 normal[c.name], tangential[c.name] = ln, -sigma * c.mu_k * ln
@@ -248,7 +313,7 @@ def impulse_problem(M: np.ndarray, u0: np.ndarray, contacts: list[ContactRows], 
                 indet = tuple(names[i] for i in range(len(names)) if nz[n + i])
                 first = ImpulseSolution(u, normal, tangential, dict(zip([c.name for c in contacts], states)),
                                         vn_after, vt_after, dT, 0, indet,
-                                        {str(lb): float(v) for lb, v in zip(rlabels, x[n:n + mr])})
+                                        {str(lb): float(v) for lb, v in zip(rlabels, x[n:n + mr])}, further)
     if first is None:
         raise NoImpulseSolution(", ".join(c.name for c in contacts))
     return replace(first, count=count)

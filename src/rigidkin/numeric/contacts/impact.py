@@ -49,11 +49,11 @@ class ImpactOutcome:
     solutions: int = 1          # how many solutions the impulse problem has (1: unique)
     indeterminate: tuple = ()   # impulses the impact does not determine (how they split is a choice)
     held: tuple = ()            # contacts the coordinates keep closed (impulses from every body's equations)
-    impulse_names: tuple = ()   # (normal, tangential or None) reaction names per contact
+    impulse_names: tuple = ()   # (normal, tangential or None, further...) reaction names per contact
 
 
 def _rough(c, planar: bool) -> bool:
-    return c.friction == ROLLING or (isinstance(c.friction, Coulomb) and planar)
+    return c.friction == ROLLING or isinstance(c.friction, Coulomb)
 
 
 def _impact_mode(hybrid: Hybrid, mode: dict, taking_part: list[str]):
@@ -90,7 +90,8 @@ def _functions(hybrid: Hybrid, imode: dict, names: tuple):
             rows = c.rows(setup.kin, STICK if _rough(c, setup.kin.planar) else SLIP)
             A, b = linear_form([setup.scalar(r.velocity) for r in rows], rates)
             exprs.extend([*A, *b])
-            shape.append((len(rows), str(rows[0].reaction), str(rows[1].reaction) if len(rows) > 1 else None))
+            shape.append((len(rows), str(rows[0].reaction), str(rows[1].reaction) if len(rows) > 1 else None,
+                          tuple(str(r.reaction) for r in rows[2:])))
             contact_rows.append(rows)
         M = sol.regime(0).mass_matrix
         held = [n for n in names if imode[n] != OPEN]
@@ -126,7 +127,7 @@ def impact(hybrid: Hybrid, mode: dict, contact: str, t_: float, y: np.ndarray, p
     M = vals[:n * n].reshape(n, n)
     k = n * n
     blocks = []
-    for m, _, _ in shape:
+    for m, *_ in shape:
         blocks.append((vals[k:k + m * n].reshape(m, n), vals[k + m * n:k + m * n + m]))
         k += m * n + m
     momentum = bilateral = None
@@ -143,7 +144,7 @@ def impact(hybrid: Hybrid, mode: dict, contact: str, t_: float, y: np.ndarray, p
             cols[i] = [C[:, j + r] for r in range(m)]
             j += m
     rows = []
-    for i, (name, (m, nn, ft), (A, b)) in enumerate(zip(names, shape, blocks)):
+    for i, (name, (m, nn, ft, more), (A, b)) in enumerate(zip(names, shape, blocks)):
         c = hybrid.contacts[name]
         mu_s = mu_k = 0.0
         if isinstance(c.friction, Coulomb) and m > 1:
@@ -153,7 +154,7 @@ def impact(hybrid: Hybrid, mode: dict, contact: str, t_: float, y: np.ndarray, p
                                 mu_s, mu_k, c.friction == ROLLING, float(restitution.get(name, 0.0)),
                                 tuple((A[r], float(b[r])) for r in range(2, m)),
                                 col[0], col[1] if m > 1 else None, tuple(col[2:]), imode[name] != OPEN,
-                                (nn, ft) + tuple(f"{ft}{r}" for r in range(2, m))))
+                                (nn, ft, *more)))
     u0 = np.array([y[lay.n + s] for s in slots])
     model = hybrid.model(imode, 0)
     T0, _ = model.energy(t_, y, p)
@@ -184,27 +185,31 @@ def impact(hybrid: Hybrid, mode: dict, contact: str, t_: float, y: np.ndarray, p
         raise SimulationError(f"at t = {t_:.10g} the impact at {', '.join(names)} would increase the kinetic "
                               f"energy by {dT:.3g}; it is not resolved.", where=hybrid.system.name)
     impulses = {}
-    for name, (_m, nn, ft) in zip(names, shape):
+    for name, (_m, nn, ft, more) in zip(names, shape):
         impulses[nn] = res.normal[name]
         if ft is not None:
             impulses[ft] = res.tangential[name]
+        for k_, v in zip(more, res.further.get(name, ())):
+            impulses[k_] = v
     gap, vn0, _ = hybrid.contact_state(contact, t_, y, p)
     return ImpactOutcome(y_after, impulses, float(vn0), float(res.normal_after[contact]), float(dT),
                          tuple(names), dict(res.normal_after), dict(res.slip_after), dict(res.states), plastic,
                          res.count, res.indeterminate, tuple(n_ for n_ in names if imode[n_] != OPEN),
-                         tuple((nn, ft) for _m, nn, ft in shape))
+                         tuple((nn, ft, *more) for _m, nn, ft, more in shape))
 
 
 def impact_numbers(out: ImpactOutcome, before: dict, after: dict) -> dict:
     """An impact as plain numbers (for JSON): per contact its normal and tangential impulse, its state
     and its normal speed after; the jump of every rate; the change of kinetic energy."""
     per = {}
-    for c, (nn, ft) in zip(out.contacts, out.impulse_names):
+    for c, (nn, ft, *more) in zip(out.contacts, out.impulse_names):
         d = {"state": out.states.get(c, ""), "normal_impulse": float(out.impulses.get(nn, 0.0)),
              "normal_impulse_name": nn, "tangential_impulse": float(out.impulses.get(ft, 0.0)) if ft else 0.0,
              "normal_speed_after": float(out.normal_after.get(c, 0.0))}
         if ft is not None:
             d["tangential_impulse_name"] = ft
+        if more:            # 3D: the friction impulse along each tangent of the contact's basis
+            d["tangential_impulses"] = [float(out.impulses.get(k, 0.0)) for k in (ft, *more)]
         if c in out.slip_after:
             d["slip_speed_after"] = float(out.slip_after[c])
         per[c] = d
@@ -234,7 +239,8 @@ def mode_after(hybrid: Hybrid, mode: dict, out: ImpactOutcome, rest_speed: float
             cand[name] = STICK
         else:
             cand[name] = SLIP
-            forced[name] = 1 if out.slip_after[name] > 0 else -1
+            if hybrid.kin.planar:       # in 3D the slip direction is taken from the state (slip3d)
+                forced[name] = 1 if out.slip_after[name] > 0 else -1
     return cand, forced, notes
 
 
