@@ -223,3 +223,28 @@ def test_sphere_dropped_spinning_onto_a_rough_floor_in_3d_rebounds_as_by_hand(vx
         assert ev.after[k] == pytest.approx(v, abs=1e-10)
     assert np.allclose(_omega(ev.after), after[3:], rtol=1e-9, atol=1e-8)
     assert ev.impact["energy_change"] < 0
+
+
+@pytest.mark.parametrize("dims", [2, 3])
+def test_coincident_contacts_share_friction_where_only_one_split_fits(dims):
+    """A point mass striking the floor at two coincident contacts (µ = 0.1 and 1.0), e = 0, with
+    |v_x| = 0.5 |v_z|: it can stop (stick) only if the rough contact carries the friction. By hand:
+    u⁺ = 0, total impulse m(−v_x, −v_z); the smooth-ish contact's share must stay in its cone."""
+    from rigidkin.numeric.contacts.contact_lcp import ContactRows, impulse_problem
+
+    m = 2.0
+    M = np.eye(dims) * m
+    u0 = np.array([1.0, -2.0] if dims == 2 else [1.0, 0.0, -2.0])
+    Jn = np.eye(dims)[-1]
+    Jt = np.eye(dims)[0]
+    extra = ((np.eye(dims)[1], 0.0),) if dims == 3 else ()
+    rows = [ContactRows(name, Jn, 0.0, Jt, 0.0, mu, mu, False, 0.0, extra) for name, mu in (("A", 0.1), ("B", 1.0))]
+    res = impulse_problem(M, u0, rows)
+    assert res.states == {"A": "stick", "B": "stick"}
+    assert np.allclose(res.u, 0.0, atol=1e-12)
+    assert res.normal["A"] + res.normal["B"] == pytest.approx(m * 2.0, rel=1e-12)
+    assert res.tangential["A"] + res.tangential["B"] == pytest.approx(-m * 1.0, rel=1e-12)
+    for name, mu in (("A", 0.1), ("B", 1.0)):
+        assert abs(res.tangential[name]) <= mu * res.normal[name] + 1e-12
+        assert res.normal[name] >= -1e-12
+    assert set(res.indeterminate) >= {"A:normal", "B:normal"}

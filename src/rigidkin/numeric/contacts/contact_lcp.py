@@ -183,21 +183,48 @@ def _candidate(E, u0, R, contacts, states, dirs=None):
 
 
 def _within(G, h, x, N, tol):
-    """x, or x + N w chosen (by linear programming, HiGHS) among the solutions of the equations so that
-    G x ≥ h; None when no solution of the equations meets the inequalities."""
+    """x, or x + N w chosen among the solutions of the equations so that G x ≥ h: the one farthest from
+    its limits (max t with G x − h ≥ t, a linear program, scipy's HiGHS); None when no solution of the
+    equations meets the inequalities."""
     if G.shape[0] == 0 or np.all(G @ x - h >= -tol):
         return x
     if N.shape[1] == 0:
         return None
     from scipy.optimize import linprog
 
+    k = N.shape[1]
+    scale = max(1.0, float(np.max(np.abs(x))))
     GN = G @ N
-    res = linprog(np.zeros(N.shape[1]), A_ub=-GN, b_ub=G @ x - h + tol, bounds=[(None, None)] * N.shape[1],
+    A_ub = np.hstack([-GN, np.ones((G.shape[0], 1))])        # t − G N w ≤ G x − h
+    res = linprog(np.r_[np.zeros(k), -1.0], A_ub=A_ub, b_ub=G @ x - h, bounds=[(None, None)] * k + [(None, scale)],
                   method="highs")
-    if res.status != 0:
+    if res.status != 0 or res.x[-1] < -max(tol, 1e-9 * scale):
         return None
-    x1 = x + N @ res.x
-    return x1 if np.all(G @ x1 - h >= -2 * tol) else None
+    return x + N @ res.x[:k]
+
+
+def _within_cones(contacts, states, offset, x, x0, N, G, h, tol):
+    """Where a 3D contact sticks and the impulses are indeterminate (four corners), a split inside every
+    friction cone when the one found is not: the cones replaced by inscribed octagons (linear, so the
+    linear program finds such a split if the octagons admit one).  Otherwise ``x`` unchanged."""
+    if N.shape[1] == 0:
+        return x
+    rows, j, bad = [], offset, False
+    for c, st in zip(contacts, states):
+        if st == INACTIVE:
+            continue
+        if st == STICK and _cone(c):
+            bad |= math.hypot(x[j + 1], x[j + 2]) > c.mu_s * x[j] + tol
+            for k in range(8):
+                r = np.zeros(len(x))
+                r[j], r[j + 1], r[j + 2] = c.mu_s * math.cos(math.pi / 8), -math.cos(k * math.pi / 4), \
+                    -math.sin(k * math.pi / 4)
+                rows.append(r)
+        j += (2 + len(c.extra)) if st == STICK and c.Jt is not None else 1
+    if not bad:
+        return x
+    x1 = _within(np.vstack([G, *rows]), np.concatenate([h, np.zeros(len(rows))]), x0, N, tol)
+    return x if x1 is None else x1
 
 
 def _solve_with_directions(E, u0, R, contacts, states, iterations: int = 60):
@@ -263,9 +290,11 @@ def impulse_problem(M: np.ndarray, u0: np.ndarray, contacts: list[ContactRows], 
         if N.shape[1] and np.max(np.abs(N[:n])) > 1e-9:
             continue                         # the velocities after are not determined by this candidate
         imp = max(1e-300, float(np.max(np.abs(x[n:]))) if len(x) > n else 0.0)
+        x0 = x
         x = _within(G, h, x, N, tol * max(imp, speed))
         if x is None:
             continue
+        x = _within_cones(contacts, states, n + mr, x, x0, N, G, h, tol * max(imp, speed))
         u, lam = x[:n], x[n + mr:]
         ok, j = True, 0
         normal, tangential, vn_after, vt_after, further = {}, {}, {}, {}, {}
