@@ -248,3 +248,34 @@ def test_coincident_contacts_share_friction_where_only_one_split_fits(dims):
         assert abs(res.tangential[name]) <= mu * res.normal[name] + 1e-12
         assert res.normal[name] >= -1e-12
     assert set(res.indeterminate) >= {"A:normal", "B:normal"}
+
+
+def test_ladder_on_a_rough_floor_lands_flat_with_both_floor_impulses_in_the_json(tmp_path, capsys):
+    """The ladder card with a rough floor (µ = 0.1 under both ends): it slides, leaves the wall and lands
+    flat; the foot B (kept on the floor by the coordinates) takes its impulses too. By hand at θ = π/2,
+    e = 0: N_B = m l ω⁻/6, N_Af = m l ω⁻/3, F = µ N at each, ẋ⁺ = ẋ⁻ − µ (N_B + N_Af)/m."""
+    from pathlib import Path
+
+    from rigidkin.cli import main
+
+    src = (Path(HERE).parent / "examples" / "ladder.toml").read_text()
+    src = src.replace('normal_name = "N_B"\n', 'normal_name = "N_B"\nfriction_name = "F_B"\nfriction = 0.1\n')
+    src = src.replace('normal_name = "N_Af"\n', 'normal_name = "N_Af"\nfriction_name = "F_Af"\nfriction = 0.1\n')
+    path = tmp_path / "ladder-rough.toml"
+    path.write_text(src)
+    code = main(["simulate", str(path), "--t-end", "1.5", "--json", "--points", "20"])
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    d = json.loads(out)
+    ev = next(e for e in d["events"] if "impact" in e)
+    m, length, mu = 10.0, 2.0, 0.1
+    w0, xd0 = ev["state"]["dot(theta)"], ev["state"]["dot(x)"]
+    assert ev["state"]["theta"] == pytest.approx(math.pi / 2, abs=1e-9) and w0 > 0 and xd0 > 0
+    n_b, n_af = m * length * w0 / 6, m * length * w0 / 3
+    imp = ev["impact"]["contacts"]
+    assert imp["B"]["normal_impulse"] == pytest.approx(n_b, rel=1e-10)
+    assert imp["A_floor"]["normal_impulse"] == pytest.approx(n_af, rel=1e-10)
+    assert imp["B"]["tangential_impulse"] == pytest.approx(mu * n_b, rel=1e-10)
+    assert imp["A_floor"]["tangential_impulse"] == pytest.approx(mu * n_af, rel=1e-10)
+    assert ev["state_after"]["dot(x)"] == pytest.approx(xd0 - mu * (n_b + n_af) / m, rel=1e-10)
+    assert ev["state_after"]["dot(theta)"] == 0.0 and ev["impact"]["held"] == ["B"]
