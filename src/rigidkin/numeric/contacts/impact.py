@@ -11,7 +11,10 @@ an impulse) and Coulomb's law for the friction impulse (sticking within µs Λ_n
 µk Λ_n against the slip it leaves with).  The kinetic energy after the impact is checked never to
 exceed the energy before; where Newton's law with friction would create energy the impact is
 resolved as plastic (e = 0) and the event says so.  A contact the model cannot open (no
-coordinate lets it separate) keeps its constraint through the impact.
+coordinate lets it separate: a ladder's foot on the floor) is *held*: it keeps its constraint, and its
+normal and friction impulses come from every body's unreduced impulse–momentum equations
+(``derive.laws.impulse.unreduced_equations``), as its reaction does in ``solve``.  In 3D a rough
+contact's friction impulse lies in Coulomb's cone (``contact_lcp``).
 """
 
 from __future__ import annotations
