@@ -2,12 +2,14 @@
 
     python benchmarks/contacts_vs_siconos.py [--siconos-python /usr/bin/python3] [--h-step 1e-4]
 
-Three cases, each run in rigidkin (``rigidkin.numeric.simulate``) and in Siconos (``siconos_cases.py``,
+Four cases, each run in rigidkin (``rigidkin.numeric.simulate``) and in Siconos (``siconos_cases.py``,
 through a subprocess with the interpreter that has Siconos; skipped with the reason if it cannot import it):
 
 * ball: a ball dropped h = 0.8 m onto a floor, e = 0.5 — impact times and speeds (Siconos event-driven);
 * incline: a block thrown up a rough incline (β = 0.4, µ = 0.6, v0 = 2 m/s), stops and stays — stop time and
   place (Siconos Moreau–Jean time stepping, so its event times are known to one step h);
+* two supports: a level rod falling onto two supports at unequal distances (e = 0.5, smooth) — impact
+  times, speeds and the impulse at each support against the lever rule (Siconos event-driven);
 * spring: a block on a spring (k = 10, m = 1) released 1 m stretched on a rough floor (µ = 0.3) — the two
   turning points, where it sticks at the second (same Siconos integrator).
 
@@ -30,6 +32,7 @@ G = 9.81
 BALL = {"g": G, "h": 0.8, "e": 0.5, "r": 0.1, "m": 2.0, "T": 2.0}
 INCLINE = {"g": G, "beta": 0.4, "m": 2.0, "v0": 2.0, "mu": 0.6, "T": 1.0}
 SPRING = {"g": G, "m": 1.0, "k": 10.0, "x0": 1.0, "mu": 0.3, "T": 5.0}
+TWO = {"g": G, "h": 0.2, "e": 0.5, "m": 1.5, "l": 1.2, "a": 0.5, "b": 0.2, "T": 1.0, "impacts": 6}
 N_IMPACTS = 6
 
 
@@ -77,6 +80,33 @@ def spring_system(p):
     return s
 
 
+def two_supports_system(p):
+    """A level rod (centre x, y; tilt θ) falling h onto supports under its points at −a and +b, smooth."""
+    s = rk.System("rod-on-two-supports")
+    m, length = s.parameter("m", "kg", value=p["m"]), s.parameter("l", "m", value=p["l"])
+    g = s.parameter("g", "m/s^2", value=p["g"])
+    x = s.coordinate("x", "centre along Ex", kind="length", initial=0, rate=0)
+    y = s.coordinate("y", "centre height", kind="length", initial=p["h"], rate=0)
+    th = s.coordinate("theta", "tilt, counter-clockwise", initial=0, rate=0)
+    R = s.frame("R", angle=th)
+    Gp = s.point("G", s.origin, x * s.inertial.x + y * s.inertial.y)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, length, axis="x"), frame=R, at=Gp)
+    floor = s.line(s.origin, s.inertial.y)
+    for name, off in (("A", -p["a"]), ("B", p["b"])):
+        s.contact(name, rod, floor, centre=s.point(name, Gp, off * R.x, body=rod), normal_name=f"N_{name}")
+    s.gravity(g)
+    return s
+
+
+def two_supports_closed(p):
+    """(t, ẏ⁻, ẏ⁺, P_A, P_B) per impact: the ball's times; P_A + P_B = m (1 + e) v, P_A a = P_B b."""
+    out = []
+    for t, vb, va in ball_closed(p | {"r": 0.0}):
+        total = p["m"] * (va - vb)
+        out.append((t, vb, va, total * p["b"] / (p["a"] + p["b"]), total * p["a"] / (p["a"] + p["b"])))
+    return out
+
+
 def timed(system, T, **kw):
     """(result, CPU s of the first run, CPU s of a repeat run)."""
     t0 = time.process_time()
@@ -113,7 +143,8 @@ def spring_closed(p):
 
 # the comparison ---------------------------------------------------------------------------------------
 def run_siconos(python, h_step):
-    params = {"ball": BALL, "incline": INCLINE | {"h_step": h_step}, "spring": SPRING | {"h_step": h_step}}
+    params = {"ball": BALL, "incline": INCLINE | {"h_step": h_step}, "spring": SPRING | {"h_step": h_step},
+              "two_supports": TWO}
     script = Path(__file__).with_name("siconos_cases.py")
     probe = subprocess.run([python, "-c", "import siconos.kernel"], capture_output=True, text=True)
     if probe.returncode:
@@ -151,6 +182,18 @@ def main():
     rows.append(("ball", "rest (last impact) t", r.events[-1].t, simp[-1]["t"] if simp else None, t_inf))
     rows.append(("ball", "impacts counted", float(len(imp)), float(len(simp)) if sic else None, None))
     cpu["ball"] = (c1, c2, sic and sic["ball"]["cpu_s"])
+
+    r, c1, c2 = timed(two_supports_system(TWO), TWO["T"], restitution=TWO["e"], max_events=200)
+    imp = r.events_of("impact")
+    simp = sic["two_supports"]["impacts"] if sic and "two_supports" in sic else []
+    for k, (t, _vb, va, pa, pb) in enumerate(two_supports_closed(TWO)):
+        s = simp[k] if k < len(simp) else None
+        nums = imp[k].impact["contacts"]
+        rows.append(("two supports", f"impact {k + 1} t", imp[k].t, s and s["t"], t))
+        rows.append(("two supports", f"impact {k + 1} ẏ⁺", imp[k].after["dot(y)"], s and s["v_after"], va))
+        rows.append(("two supports", f"impact {k + 1} P_A", nums["A"]["normal_impulse"], s and s["P_A"], pa))
+        rows.append(("two supports", f"impact {k + 1} P_B", nums["B"]["normal_impulse"], s and s["P_B"], pb))
+    cpu["two supports"] = (c1, c2, sic and sic.get("two_supports", {}).get("cpu_s"))
 
     r, c1, c2 = timed(incline_system(INCLINE), INCLINE["T"])
     ev = [e for e in r.events if e.kind == "sticks"][0]

@@ -12,6 +12,8 @@ Cases (coordinates as in the rigidkin models, each a point mass or a ball with t
 * ``incline``: a block thrown up a rough incline (µ) with speed v0, tan β ≤ µ so that it stops and stays;
   Siconos ``TimeStepping`` Moreau–Jean (θ = 0.5) with a 2D ``FrictionContact`` (``NewtonImpactFrictionNSL``).
   The stop time is the first step end with |ẋ| below 1e-9 m/s (resolution: the step h).
+* ``two_supports``: a level rod falling onto two supports at unequal distances from its centre, e, smooth;
+  event-driven: impact times, speeds and the impulse at each support (lever rule P_A a = P_B b).
 * ``spring``: a block on a spring, released stretched on a rough floor (µ): it turns, slides back, and
   sticks once |k x| ≤ µ m g.  Same Siconos integrator; the turning times are the step ends where ẋ changes
   sign or vanishes.
@@ -118,7 +120,43 @@ def spring(p):
             "steps": len(ts) - 1}
 
 
-CASES = {"ball": ball, "incline": incline, "spring": spring}
+def two_supports(p):
+    """A level rod (mass m, length l) falling h onto two supports under its points at −a and +b from the
+    centre, e at both, smooth: q = (y, θ), gaps y − a θ and y + b θ (exact here: θ stays 0 when the
+    supports strike together).  Event-driven as the ball; the impulses per support at each impact."""
+    g, h, e, m, length, a, b, T = p["g"], p["h"], p["e"], p["m"], p["l"], p["a"], p["b"], p["T"]
+    t0 = _cpu()
+    ds = sk.LagrangianLinearTIDS([h, 0.0], [0.0, 0.0], np.diag([m, m * length**2 / 12]))
+    ds.setFExtPtr(np.array([-m * g, 0.0]))
+    nsds = sk.NonSmoothDynamicalSystem(0.0, T)
+    nsds.insertDynamicalSystem(ds)
+    inters = []
+    for row in ([[1.0, -a]], [[1.0, b]]):
+        inter = sk.Interaction(sk.NewtonImpactNSL(e), sk.LagrangianLinearTIR(np.array(row)))
+        nsds.link(inter, ds)
+        inters.append(inter)
+    sim = sk.EventDriven(nsds, sk.TimeDiscretisation(0.0, p.get("h_out", 0.01)))
+    osi = sk.LsodarOSI()
+    osi.setTol(1, p.get("rtol", 1e-10), p.get("atol", 1e-12))
+    sim.insertIntegrator(osi)
+    sim.insertNonSmoothProblem(sk.LCP(), sk.SICONOS_OSNSP_ED_IMPACT)
+    sim.insertNonSmoothProblem(sk.LCP(), sk.SICONOS_OSNSP_ED_SMOOTH_ACC)
+    sim.initialize()
+    impacts, steps = [], 0
+    while sim.hasNextEvent() and steps < p.get("max_steps", 20000) and len(impacts) < p.get("impacts", 6):
+        sim.advanceToEvent()
+        steps += 1
+        impact = sim.eventsManager().nextEvent().getType() == 2
+        if impact:
+            before = {"t": sim.nextTime(), "v_before": float(ds.velocity()[0])}
+        sim.processEvents()
+        if impact:
+            impacts.append(before | {"v_after": float(ds.velocity()[0]), "w_after": float(ds.velocity()[1]),
+                                     "P_A": float(inters[0].lambda_(1)[0]), "P_B": float(inters[1].lambda_(1)[0])})
+    return {"impacts": impacts, "cpu_s": _cpu() - t0, "steps": steps}
+
+
+CASES = {"ball": ball, "incline": incline, "spring": spring, "two_supports": two_supports}
 
 
 def main():

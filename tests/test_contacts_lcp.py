@@ -257,7 +257,7 @@ def test_painleve_rod_reported_with_the_critical_coefficient():
     m, length = 1.5, 1.2
     s = rod(2.0, theta, 0.0, m=m, length=length)
     with pytest.raises(ContactParadox, match="no solution") as err:
-        simulate(s, 0.05, initial_state={"dot(x)": -1.0})
+        simulate(s, 0.05, initial_state={"dot(x)": -1.0}, raise_on_stop=True)
     msg = str(err.value)
     mu_star = (1 + 3 * math.cos(theta)**2) / (3 * math.sin(theta) * math.cos(theta))
     assert mu_star == pytest.approx(4 / 3)
@@ -410,7 +410,7 @@ def test_painleve_non_uniqueness_is_reported_not_guessed():
     s = rod(2.0, theta, 0.0, m=m, length=2 * a)
     start = {"dot(theta)": w, "dot(y)": a * math.cos(theta) * w, "dot(x)": -1.0 - a * math.sin(theta) * w}
     with pytest.raises(ContactParadox, match="2 solutions") as err:
-        simulate(s, 0.05, initial_state=start)
+        simulate(s, 0.05, initial_state=start, raise_on_stop=True)
     assert err.value.stop_reason == "ambiguous"
     N = m * (G - a * math.sin(theta) * w**2) / (1 + 3 * math.cos(theta)**2 - 6 * math.sin(theta) * math.cos(theta))
     assert N > 0 and f"would be {N:.4g}" in str(err.value)

@@ -43,6 +43,7 @@ class Event:
     mode_before: str
     mode_after: str
     detail: str = ""
+    impact: dict | None = None  # an impact's numbers: impulses per contact, velocity jump, energy change
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "t": self.t, "state": dict(self.state), "kind": self.kind,
@@ -51,6 +52,8 @@ class Event:
             d["state_after"] = dict(self.after)
         if self.detail:
             d["detail"] = self.detail
+        if self.impact is not None:
+            d["impact"] = self.impact
         return d
 
     def __str__(self) -> str:
@@ -214,7 +217,7 @@ class SimulationResult:
 
         cols = self.columns()
         names = list(cols)
-        modes = [safe_csv_cell(s.description) for s in self.segments]
+        modes = [safe_csv_cell(s.description) for s in self.segments] or ["(no mode: stopped at the start)"]
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow([safe_csv_cell(n) for n in (names[0], "mode", *names[1:])])

@@ -250,7 +250,8 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
              method: str = "DOP853", rtol: float = 1e-11, atol: float = 1e-13, max_step: float | None = None,
              n_points: int = 1001, max_events: int = 1000, rest_speed: float = 1e-5,
              energy_tol: float = 1e-6, residual_tol: float = 1e-6,
-             progress: Callable[[float, float], None] | None = None) -> SimulationResult:
+             progress: Callable[[float, float], None] | None = None,
+             raise_on_stop: bool = False) -> SimulationResult:
     """Simulate ``system`` over ``t_span`` (an end time, or (start, end)) through its contact modes.
 
     ``initial_state`` maps ``theta`` / ``dot(theta)`` to values (default: the declared initial
@@ -260,7 +261,9 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
     ``restitution`` is e for every contact or a dict per contact (0: the contact closes on impact;
     a bounce slower than ``rest_speed`` closes it too; None: each contact's ``System.restitution``, or 0).
     ``max_step`` defaults to 1/100 of the span.
-    Returns a :class:`SimulationResult` with time histories, events, energy and constraint monitors.
+    Returns a :class:`SimulationResult` with time histories, events, energy and constraint monitors;
+    a run that stops early (at t = 0 too: a contact paradox at the start) returns its result with
+    ``stop_reason`` and ``message``, and raises only with ``raise_on_stop=True``.
     """
     t0, t1 = _span(t_span)
     max_step = (t1 - t0) / 100 if max_step is None else float(max_step)   # no event hides inside one step
@@ -290,7 +293,12 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
                     raise InputError(f"contact {name} has a static coefficient of friction µs = {mu_s:g} smaller "
                                      f"than its kinetic one µk = {mu_k:g}.", where="parameters",
                                      hint="Give µs ≥ µk (a single µ means both).")
-    y_q, mode_, k = initial_conditions(system, initial_state, {**base, **dict(phases[0].params)}, mode, t0)
+    try:
+        y_q, mode_, k = initial_conditions(system, initial_state, {**base, **dict(phases[0].params)}, mode, t0)
+    except SimulationError as exc:         # the contact problem at the start (a paradox): a stop, explained
+        if raise_on_stop:
+            raise
+        return _stopped_at_start(system, lay, initial_state, t0, exc)
     explicit, declared = initial_values(system, lay, initial_state)
     assembled = assembled_changes(lay, {**declared, **explicit}, y_q)
     until_fns = [_phase_function(lay, ph) for ph in phases]
@@ -421,9 +429,31 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
     if result.stop_reason == "completed":      # else the monitors stopped it (constraint or energy drift)
         result.stop_reason = stop
     result.assembled = assembled          # declared coordinates moved onto the constraints: (declared, assembled)
+    if raise_on_stop and result.stop_reason != "completed":
+        exc = SimulationError(result.message, where=system.name)
+        exc.stop_reason, exc.result = result.stop_reason, result
+        raise exc
     for wmsg in result.warnings:
         warnings.warn(wmsg, RuntimeWarning, stacklevel=2)
     return result
+
+
+def _stopped_at_start(system, lay: StateLayout, initial_state, t0: float, exc) -> SimulationResult:
+    """The result of a run that cannot start: the initial state as given (dependent coordinates as
+    declared), one stop event saying why, and ``stop_reason``."""
+    explicit, declared = initial_values(system, lay, initial_state)
+    y = np.zeros(2 * lay.n)
+    for i, v in {**declared, **explicit}.items():
+        y[i] = v
+    stop = getattr(exc, "stop_reason", None) or ("mode-unavailable" if isinstance(exc, ModeUnavailable)
+                                              else "no-consistent-mode")
+    message = exc.message + (f" {exc.hint}" if exc.hint else "")
+    state = lay.as_dict(y)
+    ev = Event("the simulation cannot start", "stop", "", t0, state, state, "", "", exc.message)
+    nan = np.zeros(1)
+    return SimulationResult(system.name, system.title, lay, np.array([t0]), y[None, :].copy(), np.zeros(1, dtype=int),
+                            {}, {"T": nan, "U": nan, "E": nan, "W": nan}, {}, [ev], [], "stopped", message, 0.0,
+                            "not integrated", stop_reason=stop)
 
 
 def _event(fn, direction, t_start, y_start, zero):

@@ -372,3 +372,33 @@ def conserved_momenta(system, mode: dict | None = None, substitutions: dict | No
             setup.trace.add("Answers", f"Conserved: {label}", [(sp.Symbol("p"), expr)],
                             "its force (or moment) is zero in this mode, so it keeps its value.")
     return out
+
+
+def unreduced_equations(setup: ModeSetup, rates: list, contact_names: set, contact_rows: list) -> tuple:
+    """Every body's impulse–momentum equations along each direction, unreduced, for an impact.
+
+    Returns E, R, C (sympy matrices) and the names of the reactions in R: E·(u⁺ − u⁻) = R·r + C·Λ, u the
+    ``rates``, r the impulses of the mode's constraint rows other than the contacts ``contact_names``,
+    Λ those of ``contact_rows`` (a list of Rows per contact, normal first).  A contact whose normal the
+    coordinates keep (a ladder's foot on the floor) takes its normal impulse from these equations, as
+    its reaction does in ``solve``.
+    """
+    kin = setup.kin
+    force, moment = _dirs(setup)
+    rows = [r for r in setup.rows if r.constraint not in contact_names] + [r for rs in contact_rows for r in rs]
+    E, RC = [], []
+    for b in setup.system.bodies.values():
+        p = b.mass * kin.velocity(b.centre) if not b.is_massless else Vector(0)
+        H = b.inertia.dot(kin.omega_of(b)) if not b.is_massless else Vector(0)
+        loads = [_resultants(setup, b, row.applications) for row in rows]
+        for (e, _name), kind in [(d, "force") for d in force] + [(d, "moment") for d in moment]:
+            vec = p if kind == "force" else H
+            mom = setup.scalar(vec.dot(e)) if vec != Vector(0) else sp.Integer(0)
+            A, _ = linear_form([mom], rates)
+            E.append(list(A))
+            RC.append([sp.diff(setup.scalar((Fr if kind == "force" else Mr).dot(e)), row.reaction)
+                       for row, (Fr, Mr) in zip(rows, loads)])
+    nb = len([r for r in setup.rows if r.constraint not in contact_names])
+    RC = sp.Matrix(RC) if RC else sp.zeros(0, len(rows))
+    return (sp.Matrix(E), RC[:, :nb], RC[:, nb:],
+            tuple(str(r.reaction) for r in setup.rows if r.constraint not in contact_names))

@@ -11,7 +11,10 @@ an impulse) and Coulomb's law for the friction impulse (sticking within µs Λ_n
 µk Λ_n against the slip it leaves with).  The kinetic energy after the impact is checked never to
 exceed the energy before; where Newton's law with friction would create energy the impact is
 resolved as plastic (e = 0) and the event says so.  A contact the model cannot open (no
-coordinate lets it separate) keeps its constraint through the impact.
+coordinate lets it separate: a ladder's foot on the floor) is *held*: it keeps its constraint, and its
+normal and friction impulses come from every body's unreduced impulse–momentum equations
+(``derive.laws.impulse.unreduced_equations``), as its reaction does in ``solve``.  In 3D a rough
+contact's friction impulse lies in Coulomb's cone (``contact_lcp``).
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ import numpy as np
 from sympy.physics.vector import dynamicsymbols
 
 from ...derive.kinematics import linear_form
+from ...derive.laws.impulse import unreduced_equations
 from ...model.constraints import ROLLING, SMOOTH, Coulomb
 from ..rhs import SimulationError, compile_functions
 from .contact_lcp import ContactRows, NoImpulseSolution, impulse_problem
@@ -46,24 +50,34 @@ class ImpactOutcome:
     states: dict = field(default_factory=dict)          # stick / slide± / inactive per contact
     plastic: bool = False       # Newton's law would have created energy: resolved with e = 0
     solutions: int = 1          # how many solutions the impulse problem has (1: unique)
+    indeterminate: tuple = ()   # impulses the impact does not determine (how they split is a choice)
+    held: tuple = ()            # contacts the coordinates keep closed (impulses from every body's equations)
+    impulse_names: tuple = ()   # (normal, tangential or None, further...) reaction names per contact
 
 
 def _rough(c, planar: bool) -> bool:
-    return c.friction == ROLLING or (isinstance(c.friction, Coulomb) and planar)
+    return c.friction == ROLLING or isinstance(c.friction, Coulomb)
 
 
 def _impact_mode(hybrid: Hybrid, mode: dict, taking_part: list[str]):
-    """The mode in which the contacts taking part are open (those the model cannot open stay closed)."""
+    """The mode in which the contacts taking part are open, where the model can open them: a contact
+    whose normal the coordinates keep (a ladder's foot on the floor) stays closed and is *held*."""
     trial = {**mode, **{n: OPEN for n in taking_part}}
     try:
         hybrid.solution(trial)
         return trial, list(taking_part)
     except ModeUnavailable:
         pass
-    striking = [n for n in taking_part if mode[n] == OPEN]
-    trial = {**mode, **{n: OPEN for n in striking}}
+    trial = {**mode, **{n: OPEN for n in taking_part if mode[n] == OPEN}}
     hybrid.solution(trial)                  # ModeUnavailable propagates with the model's reason
-    return trial, striking
+    for n in taking_part:                   # in declaration order: open each one the model can open
+        if trial[n] != OPEN:
+            try:
+                hybrid.solution({**trial, n: OPEN})
+                trial = {**trial, n: OPEN}
+            except ModeUnavailable:
+                pass
+    return trial, list(taking_part)
 
 
 def _functions(hybrid: Hybrid, imode: dict, names: tuple):
@@ -73,18 +87,26 @@ def _functions(hybrid: Hybrid, imode: dict, names: tuple):
         sol = hybrid.solution(imode)
         setup = sol.setup
         rates = [q.diff(t) for q in sol.coordinates]
-        exprs, shape = [], []
+        exprs, shape, contact_rows = [], [], []
         for name in names:
             c = hybrid.contacts[name]
             rows = c.rows(setup.kin, STICK if _rough(c, setup.kin.planar) else SLIP)
             A, b = linear_form([setup.scalar(r.velocity) for r in rows], rates)
             exprs.extend([*A, *b])
-            shape.append((len(rows), str(rows[0].reaction), str(rows[1].reaction) if len(rows) > 1 else None))
+            shape.append((len(rows), str(rows[0].reaction), str(rows[1].reaction) if len(rows) > 1 else None,
+                          tuple(str(r.reaction) for r in rows[2:])))
+            contact_rows.append(rows)
         M = sol.regime(0).mass_matrix
+        held = [n for n in names if imode[n] != OPEN]
+        unreduced = None
+        if held:             # the held contacts' impulses: from every body's impulse–momentum equations
+            E, R, C, rlabels = unreduced_equations(setup, rates, set(names), contact_rows)
+            unreduced = (E.shape, R.shape, [len(r) for r in contact_rows], rlabels)
+            exprs.extend([*E, *R, *C])
         lay = hybrid.layout
         fn = compile_functions(lay.arguments(), [lay.to_plain(e) for e in (*M, *exprs)])
         slots = [lay.coordinates.index(q) for q in sol.coordinates]
-        cache[key] = (fn, len(rates), shape, slots)
+        cache[key] = (fn, len(rates), shape, slots, unreduced)
     return cache[key]
 
 
@@ -103,29 +125,46 @@ def impact(hybrid: Hybrid, mode: dict, contact: str, t_: float, y: np.ndarray, p
             if abs(gap) <= gap_tol * scale and vn < 0:
                 taking_part.append(name)           # strikes at the same instant
     imode, names = _impact_mode(hybrid, mode, taking_part)
-    fn, n, shape, slots = _functions(hybrid, imode, tuple(names))
+    fn, n, shape, slots, unreduced = _functions(hybrid, imode, tuple(names))
     vals = np.asarray([float(v) for v in fn(t_, *y[:2 * lay.n], *p)])
     M = vals[:n * n].reshape(n, n)
     k = n * n
-    rows = []
-    for name, (m, _, _) in zip(names, shape):
-        A = vals[k:k + m * n].reshape(m, n)
-        b = vals[k + m * n:k + m * n + m]
+    blocks = []
+    for m, *_ in shape:
+        blocks.append((vals[k:k + m * n].reshape(m, n), vals[k + m * n:k + m * n + m]))
         k += m * n + m
+    momentum = bilateral = None
+    cols = [None] * len(names)
+    if unreduced is not None:
+        (ke, _), (_, mr), sizes, rlabels = unreduced
+        momentum = vals[k:k + ke * n].reshape(ke, n)
+        k += ke * n
+        bilateral = (vals[k:k + ke * mr].reshape(ke, mr), rlabels)
+        k += ke * mr
+        C = vals[k:k + ke * sum(sizes)].reshape(ke, sum(sizes))
+        j = 0
+        for i, m in enumerate(sizes):
+            cols[i] = [C[:, j + r] for r in range(m)]
+            j += m
+    rows = []
+    for i, (name, (m, nn, ft, more), (A, b)) in enumerate(zip(names, shape, blocks)):
         c = hybrid.contacts[name]
         mu_s = mu_k = 0.0
         if isinstance(c.friction, Coulomb) and m > 1:
             mu_s, mu_k = hybrid._param_value(c.friction.static, p), hybrid._param_value(c.friction.kinetic, p)
+        col = cols[i] or [None, None]
         rows.append(ContactRows(name, A[0], float(b[0]), A[1] if m > 1 else None, float(b[1]) if m > 1 else 0.0,
                                 mu_s, mu_k, c.friction == ROLLING, float(restitution.get(name, 0.0)),
-                                tuple((A[r], float(b[r])) for r in range(2, m))))
+                                tuple((A[r], float(b[r])) for r in range(2, m)),
+                                col[0], col[1] if m > 1 else None, tuple(col[2:]), imode[name] != OPEN,
+                                (nn, ft, *more)))
     u0 = np.array([y[lay.n + s] for s in slots])
     model = hybrid.model(imode, 0)
     T0, _ = model.energy(t_, y, p)
 
     def solve(plastic: bool):
         try:
-            res = impulse_problem(M, u0, rows, plastic=plastic)
+            res = impulse_problem(M, u0, rows, plastic=plastic, momentum=momentum, bilateral=bilateral)
         except NoImpulseSolution:
             raise SimulationError(f"at t = {t_:.10g} no impulses at {', '.join(names)} satisfy Newton's law of "
                                   "restitution and Coulomb's law for impulses together (an impact paradox).",
@@ -149,14 +188,39 @@ def impact(hybrid: Hybrid, mode: dict, contact: str, t_: float, y: np.ndarray, p
         raise SimulationError(f"at t = {t_:.10g} the impact at {', '.join(names)} would increase the kinetic "
                               f"energy by {dT:.3g}; it is not resolved.", where=hybrid.system.name)
     impulses = {}
-    for name, (_m, nn, ft) in zip(names, shape):
+    for name, (_m, nn, ft, more) in zip(names, shape):
         impulses[nn] = res.normal[name]
         if ft is not None:
             impulses[ft] = res.tangential[name]
+        for k_, v in zip(more, res.further.get(name, ())):
+            impulses[k_] = v
     gap, vn0, _ = hybrid.contact_state(contact, t_, y, p)
     return ImpactOutcome(y_after, impulses, float(vn0), float(res.normal_after[contact]), float(dT),
                          tuple(names), dict(res.normal_after), dict(res.slip_after), dict(res.states), plastic,
-                         res.count)
+                         res.count, res.indeterminate, tuple(n_ for n_ in names if imode[n_] != OPEN),
+                         tuple((nn, ft, *more) for _m, nn, ft, more in shape))
+
+
+def impact_numbers(out: ImpactOutcome, before: dict, after: dict) -> dict:
+    """An impact as plain numbers (for JSON): per contact its normal and tangential impulse, its state
+    and its normal speed after; the jump of every rate; the change of kinetic energy."""
+    per = {}
+    for c, (nn, ft, *more) in zip(out.contacts, out.impulse_names):
+        d = {"state": out.states.get(c, ""), "normal_impulse": float(out.impulses.get(nn, 0.0)),
+             "normal_impulse_name": nn, "tangential_impulse": float(out.impulses.get(ft, 0.0)) if ft else 0.0,
+             "normal_speed_after": float(out.normal_after.get(c, 0.0))}
+        if ft is not None:
+            d["tangential_impulse_name"] = ft
+        if more:            # 3D: the friction impulse along each tangent of the contact's basis
+            d["tangential_impulses"] = [float(out.impulses.get(k, 0.0)) for k in (ft, *more)]
+        if c in out.slip_after:
+            d["slip_speed_after"] = float(out.slip_after[c])
+        per[c] = d
+    return {"contacts": per,
+            "velocity_jump": {k: float(after[k] - before[k]) for k in before if k.startswith("dot(")},
+            "energy_change": float(out.energy_change), "approach_speed": float(out.approach_speed),
+            "separation_speed": float(out.separation_speed), "plastic": bool(out.plastic),
+            "solutions": int(out.solutions), "indeterminate": list(out.indeterminate), "held": list(out.held)}
 
 
 def mode_after(hybrid: Hybrid, mode: dict, out: ImpactOutcome, rest_speed: float) -> tuple[dict, dict, list[str]]:
@@ -178,7 +242,8 @@ def mode_after(hybrid: Hybrid, mode: dict, out: ImpactOutcome, rest_speed: float
             cand[name] = STICK
         else:
             cand[name] = SLIP
-            forced[name] = 1 if out.slip_after[name] > 0 else -1
+            if hybrid.kin.planar:       # in 3D the slip direction is taken from the state (slip3d)
+                forced[name] = 1 if out.slip_after[name] > 0 else -1
     return cand, forced, notes
 
 

@@ -191,16 +191,23 @@ class Hybrid:
         return model
 
     def _steady(self, sol, reg, wexprs) -> frozenset:
-        """In a mode at rest (no degree of freedom) the state does not change, so a watch that does not
-        depend on time explicitly (through a load such as a force growing with t) keeps its value: it is
-        no event, even where it sits exactly at its limit (tan β = µs: the block stays)."""
-        if sol.coordinates or any(self.layout.to_plain(v) != 0 for v in sol.rate_relations.values()):
-            return frozenset()           # it moves (a block carried by a belt has no degree of freedom either)
+        """Watches that cannot cross zero in this regime, so they are no events even where they sit exactly
+        at their limit (the tie rule: at the limit the state in force stays):
+
+        * in a mode at rest (no degree of freedom) the state does not change, so a watch without explicit
+          time (a load growing with t) keeps its value (tan β = µs: the block stays);
+        * in any mode, a watch that with the regime's reactions depends on neither the state nor the time
+          is a constant (a cylinder rolling down an incline at µs = tan β / 3 exactly: µN − F = 0 throughout,
+          which rounding would otherwise cross back and forth)."""
+        moving = bool(sol.coordinates) or any(self.layout.to_plain(v) != 0 for v in sol.rate_relations.values())
         react = {sp.Symbol(k, real=True): v for k, v in reg.reactions.items()}
+        params = set(self.layout.parameter_symbols)
         out = set()
         for i, e in enumerate(wexprs):
             full = self.layout.to_plain(sp.sympify(e).xreplace(react))
-            if not full.has(t, *input_symbols(self.system)):      # an input u(t) varies too
+            if full.has(t, *input_symbols(self.system)):      # an input u(t) varies too
+                continue
+            if not moving or not (full.free_symbols - params):
                 out.add(i)
         return frozenset(out)
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...model.constraints import Coulomb
+from ...model.constraints import ROLLING, Coulomb
 from ..rhs import SimulationError
 from .mode_model import ModeModel, _Only
 from .slip3d import friction_needed, slip_speed, start_direction
@@ -60,6 +60,9 @@ def settle(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: floa
     does that).  Returns (mode, regime, notes).
     """
     mode, forced, notes = dict(mode), dict(forced or {}), []
+    for name, c in hyb.contacts.items():      # a rolling contact held by others rolls again on its own
+        if mode[name] == SLIP and c.friction == ROLLING:
+            mode[name] = STICK
     scale = max(1.0, float(np.max(np.abs(y[:2 * hyb.layout.n]))))
     for name, c in hyb.contacts.items():
         if mode[name] != OPEN and isinstance(c.friction, Coulomb) and name not in forced:
@@ -82,9 +85,9 @@ def settle(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: floa
                 raise
             mode = alt
             sol = hyb.solution(mode)
-            notes.append("statically indeterminate: the friction at " + ", ".join(sol.setup.held)
+            notes.append("statically indeterminate: the friction at " + ", ".join(held_contacts(hyb, mode, sol))
                          + " cannot be told apart from the other sticking contacts'; they carry it together")
-        held = tuple(getattr(sol.setup, "held", ()))
+        held = tuple(h for h in held_contacts(hyb, mode, sol) if isinstance(hyb.contacts[h].friction, Coulomb))
         k = hyb.regime_at(mode, t_, y, p, forced, zero_tol)
         model = hyb.model(mode, k)
         react = model.reactions(t_, y, p)
@@ -131,16 +134,29 @@ def settle(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: floa
                                "or the contacts keep opening and closing.")
 
 def held_alternative(hyb, mode: dict) -> dict | None:
-    """A sticking mode that is over-constrained (a rod at rest on two rough supports): the same motion
-    with the later sticking contacts named ``slip``, held by the others (friction carried jointly)."""
-    sticking = [n for n in hyb.contacts if mode[n] == STICK and isinstance(hyb.contacts[n].friction, Coulomb)]
+    """A sticking mode that is over-constrained (a rod at rest on two rough supports, a block on two
+    rolling corners): the same motion with a later sticking contact named ``slip``, held by the others
+    (its friction carried jointly with theirs: the sum is determined, the split is not)."""
+    sticking = [n for n in hyb.contacts if mode[n] == STICK
+                and (isinstance(hyb.contacts[n].friction, Coulomb) or hyb.contacts[n].friction == ROLLING)]
     for n in reversed(sticking):
         trial = {**mode, n: SLIP}
         try:
             sol = hyb.solution(trial)
         except ModeUnavailable:
             continue
-        if n in getattr(sol.setup, "held", ()):
+        if n in held_contacts(hyb, trial, sol):
             return trial
     return None
 
+
+def held_contacts(hyb, mode: dict, sol) -> tuple[str, ...]:
+    """The contacts of ``mode`` whose friction the sticking ones carry: Coulomb contacts the derivation
+    found held, and rolling contacts named ``slip`` whose slip speed the other constraints keep at zero."""
+    out = list(getattr(sol.setup, "held", ()))
+    red = sol.setup.reduction
+    for n, c in hyb.contacts.items():
+        if (mode.get(n) == SLIP and c.friction == ROLLING and n not in out and hyb.kin.planar
+                and hyb.kin.is_zero(red.to_independent(c.slip_velocity(hyb.kin)))):
+            out.append(n)
+    return tuple(out)

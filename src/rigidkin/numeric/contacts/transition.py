@@ -15,7 +15,7 @@ import numpy as np
 from ...model.constraints import SMOOTH, Coulomb
 from ..result import Event
 from ..rhs import SimulationError
-from .impact import impact, mode_after
+from .impact import impact, impact_numbers, mode_after
 from .modes import Hybrid
 from .slip3d import SLOW, SPEED, contact_of, nudge, start_direction
 from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable
@@ -55,7 +55,11 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
                   + ("; Newton's law with friction would create energy here, so the impact is plastic (e = 0)"
                      if out.plastic else "")
                   + (f"; the impulse problem has {out.solutions} solutions (the first in the fixed order is "
-                     "taken)" if out.solutions > 1 else ""))
+                     "taken)" if out.solutions > 1 else "")
+                  + (f"; {', '.join(out.held)} kept closed by the coordinates: its impulses from every body's "
+                     "impulse–momentum equations" if out.held else "")
+                  + (f"; {', '.join(out.indeterminate)} not determined by the impact (how they split between the "
+                     "contacts is a choice: the smallest that fit)" if out.indeterminate else ""))
         cand, forced_after, nts0 = mode_after(hyb, mode, out, rest_speed)
         forced = _current_signs(hyb, model, without=out.contacts)
         forced.update(forced_after)
@@ -135,7 +139,7 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
     elif w.kind == "sticks":
         name = f"contact {w.name} slip reverses"
     ev = Event(name, w.kind, w.name, t_, before, lay.as_dict(y), model.description, after_model.description,
-               detail)
+               detail, impact_numbers(out, before, lay.as_dict(y)) if w.kind == "impact" else None)
     return new_mode, k, y, ev
 
 
