@@ -22,6 +22,7 @@ from ..base import display
 from ..base.outfile import write_text, writing
 from ..base.textsafe import safe_csv_cell
 from .figure import plot_result
+from .inputs import histories as input_histories
 from .rhs import SimulationError
 from .state import StateLayout, rate_name
 
@@ -101,6 +102,7 @@ class SimulationResult:
     #: leaves the configurations its geometry describes: a disk lying flat), "constraint-drift" / "energy-drift"
     #: (a constraint or the energy balance left its tolerance: the histories end there)
     stop_reason: str = "completed"
+    inputs: dict = field(default_factory=dict)   # name → the input u(t) at each sample (as the equations saw it)
 
     @property
     def reached_end(self) -> bool:
@@ -118,7 +120,9 @@ class SimulationResult:
         return {rate_name(nm): self.y[:, n + i] for i, nm in enumerate(self.layout.names)}
 
     def __getitem__(self, name: str) -> np.ndarray:
-        """A history by name: ``theta``, ``dot(theta)``, a reaction, ``T``, ``U``, ``E``, ``W``."""
+        """A history by name: ``theta``, ``dot(theta)``, a reaction, an input, ``T``, ``U``, ``E``, ``W``."""
+        if name in self.inputs:
+            return self.inputs[name]
         if name in self.reactions:
             return self.reactions[name]
         if name in self.energy:
@@ -173,11 +177,12 @@ class SimulationResult:
         cols.update(self.q)
         cols.update(self.rates)
         cols.update(self.reactions)
+        cols.update(self.inputs)
         cols.update(self.energy)
         return cols
 
     def to_csv(self, path=None) -> str:
-        """The histories as CSV (t, mode, coordinates, rates, reactions, T, U, E, W); written to ``path`` if given.
+        """The histories as CSV (t, mode, coordinates, rates, reactions, inputs, T, U, E, W), written to ``path``.
 
         Text cells (the mode) are made safe for spreadsheets (no formulas).  For long histories
         :meth:`write_csv` streams the rows to the file instead of building the text first.
@@ -244,6 +249,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
     n = layout.n
     t_start, t_end = segments[0].t0, segments[-1].t1
     grid = np.linspace(t_start, t_end, max(2, int(n_points)))
+    input_parts: list = []
     ts, ys, segs, react_parts, res_parts, T_parts, U_parts, limit_parts = [], [], [], [], [], [], [], []
     for i, seg in enumerate(segments):
         last = i == len(segments) - 1
@@ -254,6 +260,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
         ts.append(times)
         ys.append(Y)
         segs.append(np.full(len(times), i))
+        input_parts.append(input_histories(system, layout, times, Y, seg.params))
         forces = dict(vals["reactions"])
         forces.update({k: v for k, v in vals["frictions"].items() if not k.startswith("mu*")})
         react_parts.append(forces)
@@ -277,6 +284,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
     for part in res_parts:
         for k, v in part.items():
             residuals[k] = max(residuals.get(k, 0.0), float(np.max(np.abs(v))) if len(v) else 0.0)
+    inputs = {k: np.concatenate([part[k] for part in input_parts]) for k in (input_parts[0] if input_parts else {})}
     res_hist = {k: np.concatenate([np.abs(part[k]) if k in part else np.zeros(len(tt))
                                    for part, tt in zip(res_parts, ts)]) for k in residuals}
     T, U = np.concatenate(T_parts), np.concatenate(U_parts)
@@ -303,6 +311,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
         t, Y, seg_of = t[keep], Y[:, keep], seg_of[keep]
         reactions = {k: v[keep] for k, v in reactions.items()}
         limits = {k: v[keep] for k, v in limits.items()}
+        inputs = {k: v[keep] for k, v in inputs.items()}
         T, U, E, W = T[keep], U[keep], E[keep], W[keep]
         events = [e for e in events if e.t <= t[-1]]
         drift = float(np.max(np.abs(E - E[0] - W)) / scale)            # the monitors up to the stop
@@ -313,6 +322,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
                               list(segments), status, message, drift, balance, warns,
                               {c.name: c.kind for c in system.coordinate_info.values()}, limits)
     result.stop_reason = stop_reason
+    result.inputs = inputs
     return result
 
 
