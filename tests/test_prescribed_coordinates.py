@@ -181,3 +181,48 @@ def test_refusals():
     q = s2.coordinate("q", initial=0.5)
     with pytest.raises(ModelError, match="disagrees with its law"):
         s2.prescribe(q, 2 * t)
+
+
+def governor_by_a_prescribed_angle():
+    """A rod hinged on a massless vertical shaft whose angle φ is a coordinate prescribed φ = Ω t (3D)."""
+    s = rk.System("governor-q")
+    m, l = s.parameter("m", "kg", value=2.0), s.parameter("l", "m", value=0.8)
+    g, W = s.parameter("g", "m/s^2", value=9.81), s.parameter("Omega", "rad/s", value=6.0)
+    phi = s.coordinate("phi", "shaft angle about Ey")
+    th = s.coordinate("theta", "rod from the downward shaft", initial=0.5)
+    S = s.frame("S", angle=phi, axis="y")
+    shaft = s.body("shaft", rk.shapes.Massless(), frame=S, at=s.origin)
+    R = s.frame("R", S, angle=th, axis="z")
+    O2 = s.point("O2", s.origin, 0)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=s.point("G", O2, -l / 2 * R.y))
+    s.pin("bearing", s.origin, shaft, axis="S.y")
+    s.pin("O", O2, rod, body_b=shaft, point_b=s.origin, axis="S.z")
+    s.gravity(g, -s.inertial.y)
+    s.prescribe(phi, W * t, effort="T_motor")
+    return s, (m, l, g, W), th
+
+
+def test_rod_on_a_shaft_turned_by_a_prescribed_angle():
+    from rigidkin.analysis.equilibrium import equilibria
+
+    s, (m, l, g, W), th = governor_by_a_prescribed_angle()
+    sol = s.solve()
+    assert tuple(sol.coordinates) == (th,)
+    assert sp.simplify(sol.accelerations[th] - (W**2 * sp.cos(th) - 3 * g / (2 * l)) * sp.sin(th)) == 0
+    # Euler's second law about the shaft's axis by hand: T = d/dt(⅓ m l² sin²θ Ω) = ⅔ m l² Ω sin θ cos θ θ̇
+    T_hand = sp.Rational(2, 3) * m * l**2 * W * sp.sin(th) * sp.cos(th) * th.diff(t)
+    assert sp.simplify(sol.reactions["T_motor"] - T_hand) == 0
+    # the relative equilibrium cos θ* = 3g/(2lΩ²), its frequency Ω sin θ*
+    eqs = [e for e in equilibria(sol) if e.natural_frequencies]
+    assert eqs and all("relative equilibrium" in e.notes[0] for e in eqs)
+    star = sp.acos(3 * g / (2 * l * W**2))
+    e = next(e for e in eqs if sp.simplify(e.configuration[th] - star) == 0)
+    assert sp.simplify(e.natural_frequencies[0] ** 2 - W**2 * sp.sin(star) ** 2) == 0
+
+
+def test_equilibria_refused_when_the_law_keeps_t():
+    from rigidkin.analysis.equilibrium import equilibria
+    from rigidkin.base.errors import RigidkinError
+
+    with pytest.raises(RigidkinError, match="depend on t explicitly"):
+        equilibria(shaken_cart()[0].solve())
