@@ -226,3 +226,39 @@ def test_equilibria_refused_when_the_law_keeps_t():
 
     with pytest.raises(RigidkinError, match="depend on t explicitly"):
         equilibria(shaken_cart()[0].solve())
+
+
+def test_a_prescribed_speed_against_eulers_equations():
+    """A box on a ball joint whose spin speed w3 about its axis b3 a motor holds at Ω: Euler's equations by hand,
+    I1 ẇ1 = (I2 − I3) w2 Ω, I2 ẇ2 = (I3 − I1) Ω w1, and the motor torque M3 = −(I1 − I2) w1 w2."""
+    s = rk.System("spun-box")
+    m = s.parameter("m", "kg", value=1.0)
+    I1, I2, I3 = (s.parameter(n, "kg*m^2", value=v) for n, v in (("I1", 0.2), ("I2", 0.5), ("I3", 0.3)))
+    W = s.parameter("Omega", "rad/s", value=4.0)
+    B = s.frame("B", quaternion=True, speeds=("w1", "w2", "w3"), rates=(0.1, 0.2, None))
+    box = s.body("box", rk.shapes.Inertia(mass=m, Ixx=I1, Iyy=I2, Izz=I3), frame=B, at=s.origin)
+    s.pin("ball", s.origin, box)
+    w1, w2, w3 = B.speeds
+    s.prescribe(w3, W)
+    sol = s.solve()
+    acc = {str(k.func.__name__): v for k, v in sol.accelerations.items()}
+    assert set(acc) == {"w1_int", "w2_int"}
+    assert sp.simplify(acc["w1_int"] - (I2 - I3) * w2 * W / I1) == 0
+    assert sp.simplify(acc["w2_int"] - (I3 - I1) * W * w1 / I2) == 0
+    assert sp.simplify(sol.reactions["Q_w3"] - (I2 - I1) * w1 * w2) == 0
+    res = simulate(s, 1.0, n_points=11)
+    assert np.allclose(res["dot(w3_int)"], 4.0)
+    assert np.allclose(res.reactions["Q_w3"], 0.3 * res["dot(w1_int)"] * res["dot(w2_int)"], atol=1e-9)
+
+
+def test_no_actuator_for_a_coordinate_that_turns_no_body_alone_is_refused():
+    s = rk.System("hidden")
+    m, l = s.parameter("m", "kg"), s.parameter("l", "m")
+    q, p = s.coordinate("q"), s.coordinate("p")
+    A = s.frame("A", angle=q)
+    Bf = s.frame("B", A, angle=p)
+    rod = s.body("rod", rk.shapes.PointMass(m), frame=Bf, at=s.point("G", offset=-l * Bf.y))
+    s.pin("O", s.origin, rod)
+    s.prescribe(q, t)
+    with pytest.raises(ModelError, match="no actuator moving q alone"):
+        s.solve()

@@ -42,6 +42,7 @@ class PrescribedCoordinate(Constraint):
     against: object | None = None      # the body it reacts on (None: found, or the ground)
     against_given: bool = False
     coordinate_kind: str = "angle"
+    speed: tuple | None = None         # (speed group, index) when a generalised speed is prescribed
 
     kind = "prescribed coordinate"
 
@@ -57,6 +58,10 @@ class PrescribedCoordinate(Constraint):
         return "torque" if self.coordinate_kind == "angle" else "force"
 
     def reaction_label(self, sym) -> str:
+        if self.speed is not None:
+            group, i = self.speed
+            return (f"torque needed to drive the speed {group.names[i]} (about {group.frame.basis[i]}) by the law "
+                    f"{group.names[i]} = {self.rate_law}, positive along {group.frame.basis[i]}")
         q = self.coordinate.func.__name__
         what = "torque" if self.coordinate_kind == "angle" else "force" if self.coordinate_kind == "length" \
             else "generalised force"
@@ -95,6 +100,18 @@ class PrescribedCoordinate(Constraint):
     def _candidates(self, kin):
         system, q = kin.system, self.coordinate
         label = f"effort {self.Q} driving {q.func.__name__}"
+        if self.speed is not None:          # w_i: a component of the frame's angular velocity along its own axis i
+            group, i = self.speed
+            fr = group.frame
+            e = (fr.x, fr.y, fr.z)[i]
+            on = [self.on] if self.on is not None else [b for b in system.bodies.values() if b.frame is fr]
+            for a in on:
+                for b in self._against(system, a, fr.parent):
+                    apps = [Application(a, None, self.Q * e, label, self.name, reaction=self.Q)]
+                    if b is not None:
+                        apps.append(Application(b, None, -self.Q * e, label, self.name, reaction=self.Q))
+                    yield apps
+            return
         for fr in system.frames.values():
             if fr.parent is None or fr.angle is None or fr.axis is None or not sp.sympify(fr.angle).has(q):
                 continue

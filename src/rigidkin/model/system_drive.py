@@ -82,20 +82,27 @@ class DriveMethods:
         a length, positive in the sense of the coordinate, is a reaction like any other.  It acts on the body the
         coordinate moves (``on``) and, opposite, on the body across its joint (``against``; the ground when there
         is none); both are found from where the coordinate is used when not given.  The constraint is named
-        ``drive_<coordinate>``.
+        ``drive_<coordinate>``.  A generalised speed (an angular-velocity component ``w``, System.angular_speeds or a
+        quaternion frame) is prescribed the same way, ``s.prescribe(w, Omega)``: w = law, its effort the torque about
+        that axis of the frame.
         """
-        info = None
+        info = speed = None
         for c in self._coordinates.values():
             if c.symbol == coordinate or c.name == coordinate:
                 info = c
+        for group in self.speed_groups.values():     # a generalised speed w: its quasi-coordinate π, π̇ = w
+            for i, (n, w) in enumerate(zip(group.names, group.speeds)):
+                if w == coordinate or n == coordinate or (info is not None and info.symbol == group.quasi[i]):
+                    info, speed = self._coordinates[f"{n}_int"], (group, i)
         name = getattr(getattr(coordinate, "func", None), "__name__", str(coordinate))
         where = f"prescribed coordinate {name}"
         if info is None:
-            raise ModelError(f"{coordinate!r} is not a coordinate of this system.", where=where,
+            raise ModelError(f"{coordinate!r} is not a coordinate or a speed of this system.", where=where,
                              hint="Declare it with s.coordinate(...) first, then prescribe the returned q(t).")
-        if (info.extra or {}).get("quasi"):
-            raise ModelError("a quasi-coordinate (the integral of an angular speed) locates nothing and cannot be "
-                             "prescribed.", where=where, hint="Prescribe an angle of the frame instead.")
+        if speed is not None:               # a speed's law is the speed itself: w = law
+            if law is not None and rate is not None:
+                raise ModelError("give the law of the speed once.", where=where)
+            law, rate = None, law if law is not None else rate
         if (law is None) == (rate is None):
             raise ModelError("give the law of the coordinate or the law of its rate, one of them.", where=where,
                              hint=f"s.prescribe({info.name}, Omega*t) or s.prescribe({info.name}, rate=Omega).")
@@ -106,11 +113,13 @@ class DriveMethods:
             raise ModelError(f"the law {given} involves the coordinates: a prescribed motion is a function of t and "
                              "the parameters alone.", where=where)
         q = info.symbol
-        f = given if law is not None else None
-        g = sp.diff(given, t) if law is not None else given
-        name_c = f"drive_{info.name}"
+        f = sp.sympify(given) if law is not None else None
+        g = sp.sympify(sp.diff(given, t) if law is not None else given)
+        label = info.name if speed is None else speed[0].names[speed[1]]
+        name_c = f"drive_{label}"
         self._claim(name_c, "constraint", "constraint", owner=where)
-        con = PrescribedCoordinate(name_c, coordinate=q, law=f, rate_law=g, effort_name=effort,
+        con = PrescribedCoordinate(name_c, coordinate=q, law=f, rate_law=g, effort_name=effort or f"Q_{label}",
+                                   speed=speed,
                                    on=self._check_body(on, where, allow_none=True),
                                    against=self._check_body(against, where, allow_none=True),
                                    against_given=against is not None, coordinate_kind=info.kind,
@@ -120,8 +129,8 @@ class DriveMethods:
         start = {}
         try:
             if f is not None:
-                start["initial"] = float(f.xreplace({t: 0}).xreplace(vals))
-            start["rate"] = float(g.xreplace({t: 0}).xreplace(vals))
+                start["initial"] = float(sp.sympify(f.xreplace({t: sp.Integer(0)})).xreplace(vals))
+            start["rate"] = float(sp.sympify(g.xreplace({t: sp.Integer(0)})).xreplace(vals))
         except (TypeError, ValueError):
             pass
         for key, v in start.items():
@@ -132,5 +141,8 @@ class DriveMethods:
                                  hint=f"Remove the {key} value of {info.name}: the law fixes it.")
         self._coordinates[info.name] = replace(info, prescribed=f if f is not None else None,
                                                prescribed_rate=g, **start)
+        if speed is not None and "rate" in start:
+            group, i = speed
+            group.initial = tuple(start["rate"] if j == i else v for j, v in enumerate(group.initial))
         self.constraints[name_c] = con
         return con
