@@ -150,7 +150,7 @@ def _integral(system, question, f, context):
         try:
             integral = energy_integral(sol, start)
             lhs, rhs = integral.equation
-            return Answer(question, sp.Eq(lhs, rhs), f"{text(lhs)} = {text(rhs)} (energy integral)")
+            return Answer(question, sp.Eq(lhs, rhs), f"{text(lhs)} = {text(rhs)} ({integral.name})", note=integral.note)
         except RigidkinError:
             pass
     found = first_integrals(sol, start)

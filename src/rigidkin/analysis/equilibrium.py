@@ -215,7 +215,7 @@ def linearise(solution, at: dict) -> Equilibrium:
         if not cond.holds(v, 1e-9):
             notes.append(f"but {cond.label} fails there ({text(cond.expr)} = {v:.4g})")
     notes = list(lin.notes) + notes
-    if any(c.kind == "drive" for c in solution.system.constraints.values()):
+    if any(c.kind in ("drive", "prescribed coordinate") for c in solution.system.constraints.values()):
         notes.insert(0, _RELATIVE)     # a driven body turns: at rest relative to it, not to the ground
     return Equilibrium(configuration, Mmat, Cmat, Kmat, tuple(eom), tuple(freqs), tuple(zetas),
                        tuple(complex(e) for e in eig), stab, tuple(notes))

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import sympy as sp
@@ -23,6 +23,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base import algebra
 from ..base.errors import InputError, RegimeError, RigidkinError
 from ..base.printing import text
+from ..model.drives import driving_note
 from ..numeric.simulate import Phase as SimPhase
 from ..numeric.simulate import simulate
 from .integrals import along_motion, energy_integral, single_regime
@@ -191,13 +192,17 @@ def event(solution, when, start: dict | None = None, name: str = "event", mode: 
 
     Along a conservative one-degree-of-freedom motion this is a root of a function of the coordinate
     (closed form where sympy finds one); otherwise the motion is simulated and the event located by
-    the integrator's event machinery, with the tolerance stated.
+    the integrator's event machinery, with the tolerance stated.  For a system driven by a law of t the
+    notes say that the answer holds only for that law.
     """
     try:
         integral = energy_integral(solution, start)
     except RigidkinError as exc:
-        return _verified(solution, event_by_simulation(solution, when, start, name, reason=exc.message, mode=mode))
-    return _verified(solution, _event_1dof(solution, integral, when, name))
+        ev = _verified(solution, event_by_simulation(solution, when, start, name, reason=exc.message, mode=mode))
+    else:
+        ev = _verified(solution, _event_1dof(solution, integral, when, name))
+    note = driving_note(solution.system)        # a driven system's event is that of its driving law only
+    return replace(ev, notes=tuple(ev.notes) + (note,)) if note else ev
 
 
 def _verified(solution, ev: Event) -> Event:
@@ -210,6 +215,8 @@ def _verified(solution, ev: Event) -> Event:
         return ev
     values = numeric_values(solution)
     v = _num(r, values)
+    if math.isnan(v) and isinstance(r, sp.Pow) and r.exp == sp.Rational(1, 2):
+        v = _num(r.base, values)        # q̇ = √(q̇²(q)) at a turning point: q̇² rounds to a tiny negative
     scale = max(1.0, sum(abs(_num(a, values)) for a in sp.Add.make_args(sp.expand(ev.condition.xreplace(
         {k: x for k, x in ev.state.items() if isinstance(k, sp.Derivative)}).xreplace(
         {k: x for k, x in ev.state.items() if not isinstance(k, sp.Derivative)})))))

@@ -9,6 +9,11 @@ no moving surfaces): then d/dt(½ M q̇²) = Q(q) q̇ and
 which gives q̇² as a function of q.  The generalised mass M and force Q come from the solution's mass
 matrix and forcing; the check that the q̇-dependent part of the forcing is −½ M′ q̇² is what decides
 that the integral exists (a non-conservative system gets a clear error, not a wrong integral).
+
+A system driven by a law of t (a driven body, a prescribed coordinate, a frame turned at Ω) is answered
+only for that law, and said so: where its equations are free of t (a rod on a shaft turned at constant Ω)
+the same integral is the Jacobi integral h = Σ q̇ ∂L/∂q̇ − L (T₂ − T₀ + U), not the conservation of
+T + U, which changes by the work of the drive; where they depend on t there is none.
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base import algebra
 from ..base.errors import RigidkinError
 from ..derive.laws.energy import kinetic_energy, potential_energy
+from ..model.drives import driving_laws, driving_note
 from .linear import position_gaps, present
 from .states import at_state, full_state
 
@@ -55,6 +61,8 @@ class EnergyIntegral:
     force: sp.Expr           # generalised force Q(q)
     start: tuple             # (q0, q̇0)
     branch: dict = field(default_factory=dict)   # dependent coordinates as functions of q along the motion
+    name: str = "energy integral"                # "Jacobi integral" for a system driven by a law of t
+    note: str = ""                               # when it holds: only for the given driving law
 
     @property
     def equation(self) -> tuple:
@@ -101,9 +109,12 @@ def energy_integral(solution, start: dict | None = None) -> EnergyIntegral:
     gyro = sp.expand(f - Q)
     s = sp.Dummy("s")
     expected = -sp.diff(M.xreplace({q: s}), s).xreplace({s: q}) * u**2 / 2
+    laws = driving_laws(solution.system)
     if f.has(t) and algebra.plain_state(f)[0].has(t):
-        raise RigidkinError("the forcing depends explicitly on time, so energy is not conserved.",
-                            hint="Moving surfaces and time-varying loads do work.")
+        why = f" (the driving law {'; '.join(laws)})" if laws else ""
+        raise RigidkinError(f"the forcing depends explicitly on time{why}, so energy is not conserved and there is "
+                            "no energy integral.", hint="Moving surfaces, driving laws and time-varying loads do "
+                                                        "work; simulate instead (its energy balance counts that work).")
     if not algebra.is_zero(gyro - expected):
         raise RigidkinError("the system is not conservative (its rate-dependent forces are not those of a "
                             "kinetic energy ½M(q)q̇²: damping or sliding friction does work), so there is "
@@ -112,6 +123,10 @@ def energy_integral(solution, start: dict | None = None) -> EnergyIntegral:
     work = sp.integrate(Q.xreplace({q: s}), (s, q0, q))
     rate_sq = (M.xreplace({q: q0}) * u0**2 + 2 * work) / M
     rate_sq = algebra.readable(sp.simplify(rate_sq))
+    if laws:            # the equations are free of t: the Jacobi integral for this driving law
+        return EnergyIntegral(q, rate_sq, M, Q, (q0, u0), branch, "Jacobi integral",
+                              driving_note(solution.system) + "; this is the Jacobi integral ½M q̇² − ∫Q dq, "
+                              "constant while the driving law holds")
     return EnergyIntegral(q, rate_sq, M, Q, (q0, u0), branch)
 
 
@@ -206,9 +221,13 @@ def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
     out = []
     T, U = kinetic_energy(setup), potential_energy(setup)
     E = algebra.readable(T + U)
+    note = driving_note(solution.system)
     if algebra.is_zero(_rate_along(solution, regime, E)):
         out.append(FirstIntegral("energy", E, algebra.readable(at_state(E, state)),
-                                 "T + U is constant: no non-conservative load does work in this mode"))
+                                 "T + U is constant: no non-conservative load does work in this mode"
+                                 + (f"; {note}" if note else "")))
+    elif note:
+        out += _jacobi(solution, regime, setup, T, U, state, note)
     M = regime.mass_matrix
     for j, q in enumerate(solution.coordinates):
         p = algebra.readable(sum((M[j, k] * qk.diff(t) for k, qk in enumerate(solution.coordinates)),
@@ -221,6 +240,20 @@ def first_integrals(solution, start: dict | None = None) -> list[FirstIntegral]:
     if getattr(solution.system, "speed_groups", None):
         out += _angular_momentum(solution, regime, state)
     return out
+
+
+def _jacobi(solution, regime, setup, T, U, state, note) -> list[FirstIntegral]:
+    """The Jacobi integral h = Σ q̇ ∂L/∂q̇ − L of a driven system whose Lagrangian is free of t (a frame turned at
+    constant Ω): kept only if its rate along the motion vanishes."""
+    L = setup.scalar(T - U)
+    if algebra.plain_state(sp.sympify(L))[0].has(t):
+        return []
+    us = [q.diff(t) for q in solution.coordinates]
+    h = algebra.readable(sum((u * sp.diff(L, u) for u in us), sp.Integer(0)) - L)
+    if h == 0 or not algebra.is_zero(_rate_along(solution, regime, h)):
+        return []
+    return [FirstIntegral("Jacobi integral", h, algebra.readable(at_state(h, state)),
+                          f"h = Σ q̇ ∂L/∂q̇ − L is constant: L = T − U is free of t; {note}")]
 
 
 def _angular_momentum(solution, regime, state) -> list[FirstIntegral]:

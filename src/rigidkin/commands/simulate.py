@@ -3,7 +3,8 @@
 ``--set NAME=VALUE`` gives parameter values (``--set "beta=30 deg"``; a bare number is SI),
 ``--initial NAME=VALUE`` initial coordinates and rates (``--initial theta=1e-6 "dot(theta)=0"``),
 ``--mode CONTACT=open|slip|stick`` the starting state of a contact, ``--restitution E`` (or
-``CONTACT=E``) the coefficient of restitution of impacts.  ``--plot``, ``--csv`` write the figure
+``CONTACT=E``) the coefficient of restitution of impacts, ``--input NAME=EXPR`` an input u(t) as an
+expression of t and the parameters (read by the restricted expression parser).  ``--plot``, ``--csv`` write the figure
 and the histories; ``--json`` prints the events, the final state and the energy drift.
 """
 
@@ -41,6 +42,9 @@ def register(sub) -> None:
     p.add_argument("--restitution", nargs="+", action="extend", default=[], metavar="E|CONTACT=E",
                    help="coefficient of restitution of impacts, for all contacts or per contact (default: the "
                         "contact's restitution in the problem file, else 0)")
+    p.add_argument("--input", nargs="+", action="extend", default=[], metavar="NAME=EXPR",
+                   help="an input u(t) as an expression of t and the parameters, e.g. --input \"F=3*sin(2*t)\" "
+                        "(default: the input's history in the problem file)")
     p.add_argument("--plot", metavar="PNG", help="write a figure of the histories")
     p.add_argument("--csv", metavar="CSV", help="write the histories as CSV")
     p.add_argument("--json", action="store_true", help="print events, final state and energy drift as JSON")
@@ -74,6 +78,15 @@ def _restitution(items: list[str]):
     if len(items) == 1 and "=" not in items[0]:
         return _number(items[0], "--restitution")
     return {k: _number(v, "--restitution") for k, v in _pairs(items, "--restitution").items()}
+
+
+def _inputs(given: dict, system) -> dict:
+    """Each ``--input NAME=EXPR`` read by the restricted expression parser (no eval): an expression of t."""
+    from ..io.expressions import parse_scalar
+    from ..io.problem import system_scope
+
+    scope = system_scope(system, reactions=False)
+    return {name: parse_scalar(text, scope, f"--input {name}") for name, text in given.items()}
 
 
 def _number(text: str, where: str) -> float:
@@ -158,6 +171,7 @@ def run(args) -> int:
     derived = guarded(args, open_problem, args)
     system = derived.system
     initial = checked_values(initial, units_of(system), "--initial")
+    inputs = _inputs(_pairs(args.input, "--input"), system)
     check_points(system, args.points)
     progress = _Progress(sys.stderr.isatty() and not args.json)
     set_step(f"Simulating to t = {args.t_end:g} s")
@@ -165,7 +179,7 @@ def run(args) -> int:
         warnings.simplefilter("always", RuntimeWarning)
         try:
             result = guarded(args, _simulate, system, (args.t_start, args.t_end), initial_state=initial,
-                             params=params, mode=mode, restitution=restitution, method=args.method,
+                             params=params, mode=mode, restitution=restitution, method=args.method, inputs=inputs,
                              rtol=args.rtol, atol=args.atol, n_points=args.points, progress=progress)
         except SimulationError as exc:
             print(f"rigidkin: the model cannot go on: {terminal_safe(exc)}", file=sys.stderr)

@@ -23,6 +23,7 @@ from ..model.shapes import SHAPES
 from ..model.system import System
 from . import schema as S
 from .build_loads import ConstraintsAndLoads
+from .build_prescribed import build_prescribed
 from .build_questions import Questions, _slip_handler
 from .build_units import UnitsAndDimensions
 from .expressions import (
@@ -176,6 +177,8 @@ class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
                 self.fix_point(name, p)
         for name, c in sp_.constraints.items():
             self.constraint(name, c)
+        for name, c in sp_.coordinates.items():
+            build_prescribed(self, name, c)
         owner: dict[str, str] = {}
         for cname, c in self.s.constraints.items():
             for r in c.reactions():

@@ -5,7 +5,8 @@ A problem file has, in this order of meaning (tables may come in any order in th
 
 ``title``, ``statement``, ``name``; ``[parameters]`` (``m = { unit = "kg", description = "...", value =
 10 }``); ``[coordinates]`` (``theta = { sense = "...", kind = "angle", initial = 0, rate = 0 }``; those
-declared first stay independent); ``[frames]`` (``R = { parent = "F", angle = "theta", axis = "z",
+declared first stay independent; ``prescribed = "Omega*t"``/``prescribed_rate``: driven by a law of t, its
+effort ``drive_effort``, default ``Q_<name>``); ``[frames]`` (``R = { parent = "F", angle = "theta", axis = "z",
 basis = ["er", "et", "ez"] }``); ``[points]`` (``G = { from = "O", offset = "l/2*R.y", body = "rod" }``);
 ``[bodies]`` (``rod = { shape = "slender_rod", mass = "m", length = "l", axis = "y", frame = "R", at =
 "G" }``); ``[constraints]`` (``type = "pin" | "contact" | "collar" | "knife_edge" | ...``); ``[loads]``
@@ -62,6 +63,9 @@ class CoordinateSpec(Strict):
     rate: Quantity | None = None
     description: str = ""
     positive: bool = False
+    prescribed: Expr | None = None
+    prescribed_rate: Expr | None = None
+    drive_effort: Name | None = None
 
 
 class FrameSpec(Strict):

@@ -150,3 +150,35 @@ def check_prescribed(system, frame, point, where: str) -> None:
         raise ModelError(f"the point {point.name} of a driven body moves with the coordinate(s) "
                          f"{', '.join(q.func.__name__ for q in bad)}: its motion is not prescribed.",
                          where=where, hint="Locate it by a function of t (e.g. A*cos(omega*t)*Ey).")
+
+
+def driving_laws(system) -> list[str]:
+    """Each motion the system is given as a law of t, in words: driven bodies, prescribed coordinates, frames
+    turned and points moved by laws of t.  An answer drawn from the equations (an integral, an event) holds only
+    for these laws: the drives do work to keep them."""
+    def explicit(e) -> bool:
+        return algebra.plain_state(sp.sympify(e))[0].has(t)
+
+    out = []
+    for c in system.constraints.values():
+        if getattr(c, "kind", "") == "prescribed coordinate":
+            q = c.coordinate.func.__name__
+            out.append(f"{q} = {c.law}" if c.law is not None else f"d{q}/dt = {c.rate_law}")
+    for fr in system.frames.values():
+        angles = (fr.angle,) + tuple(fr.angles or ())
+        if fr.parent is not None and any(a is not None and explicit(a) for a in angles):
+            law = fr.angle if fr.angle is not None else ", ".join(str(a) for a in fr.angles)
+            out.append(f"frame {fr.name} turned by {law}")
+    for p in system.points.values():
+        if p.parent is not None and any(explicit(m) for m, _f in (p.offset.args if p.offset != Vector(0) else ())):
+            out.append(f"point {p.name} moved by the law {p.offset}")
+    return out
+
+
+def driving_note(system) -> str:
+    """'' for a system with no driving law; else the sentence an answer carries."""
+    laws = driving_laws(system)
+    if not laws:
+        return ""
+    return ("holds only for the given driving law (" + "; ".join(laws) + "): the drive does work to keep it, so "
+            "T + U is not conserved unless that work is counted")

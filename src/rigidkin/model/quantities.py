@@ -62,6 +62,8 @@ class Coordinate:
     rate: float | None = None
     description: str = ""
     extra: dict = field(default_factory=dict, compare=False)
+    prescribed: sp.Expr | None = None        # q = f(t) when the coordinate is driven by a law (System.prescribe)
+    prescribed_rate: sp.Expr | None = None   # q̇ = g(t) when it or its rate is prescribed
 
     @property
     def rate_symbol(self) -> sp.Expr:

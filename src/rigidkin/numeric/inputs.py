@@ -121,3 +121,19 @@ def binding(system, layout, inputs: Mapping | None, p0) -> Callable | None:
 def placeholders(system) -> dict:
     """Parameter overrides that give each input a value (0) until it is bound at each evaluation."""
     return dict.fromkeys(inputs_of(system), 0.0)
+
+
+def histories(system, layout, times, Y, params) -> dict:
+    """The inputs' values at each sample (name → array) under the binding of the simulation in progress: what
+    the equations saw, feedback included; {} when the system has no inputs or none is bound."""
+    bind = ACTIVE.get()
+    declared = inputs_of(system)
+    if bind is None or not declared:
+        return {}
+    slots = {name: layout.parameters.index(name) for name in declared if name in layout.parameters}
+    out = {name: np.empty(len(times)) for name in slots}
+    for j, tt in enumerate(times):
+        p = bind(float(tt), Y[:, j], params)
+        for name, slot in slots.items():
+            out[name][j] = p[slot]
+    return out

@@ -23,6 +23,7 @@ from ..base.outfile import unique_columns, write_text, writing
 from ..base.textsafe import safe_csv_cell
 from ..derive.keyed import Keyed, history_name
 from .figure import plot_quantities, plot_result
+from .inputs import histories as input_histories
 from .rhs import SimulationError
 from .state import StateLayout, rate_name
 
@@ -108,6 +109,7 @@ class SimulationResult:
     #: leaves the configurations its geometry describes: a disk lying flat), "constraint-drift" / "energy-drift"
     #: (a constraint or the energy balance left its tolerance: the histories end there)
     stop_reason: str = "completed"
+    inputs: dict = field(default_factory=dict)   # name → the input u(t) at each sample (as the equations saw it)
 
     @property
     def reached_end(self) -> bool:
@@ -127,11 +129,13 @@ class SimulationResult:
         return Keyed({rate_name(nm): self.y[:, n + i] for i, nm in enumerate(self.layout.names)}, what="rates")
 
     def __getitem__(self, name) -> np.ndarray:
-        """A history by name: ``theta``, ``dot(theta)``, a reaction, ``energy: T`` (kinetic), ``energy: U``,
-        ``energy: E``, ``energy: W`` (a bare ``T``, ``U``, ``E``, ``W`` when no reaction has that name); or by
-        symbol: q(t), q̇(t), sympy's own ``dynamicsymbols`` of the same name, ``Symbol('N')``."""
+        """A history by name: ``theta``, ``dot(theta)``, a reaction, an input, ``energy: T`` (kinetic),
+        ``energy: U``, ``energy: E``, ``energy: W`` (a bare ``T``, ``U``, ``E``, ``W`` when no reaction has that
+        name); or by symbol: q(t), q̇(t), sympy's own ``dynamicsymbols`` of the same name, ``Symbol('N')``."""
         if not isinstance(name, str):
             name = history_name(name)
+        if name in self.inputs:
+            return self.inputs[name]
         if name in self.reactions:
             return self.reactions[name]
         if name.startswith(ENERGY) and name[len(ENERGY):] in self.energy:
@@ -184,14 +188,16 @@ class SimulationResult:
         return json.dumps(self.to_dict(), indent=indent, allow_nan=False)
 
     def columns(self) -> dict:
-        """The histories by column name: ``t``, the coordinates, the rates, the reactions (the user's names) and
-        the energies namespaced ``energy: T``, ``energy: U``, ``energy: E``, ``energy: W``, so that no user's
-        name (a tension called T) can replace another column; a name that would still appear twice is refused."""
+        """The histories by column name: ``t``, the coordinates, the rates, the reactions (the user's names), the
+        inputs, and the energies namespaced ``energy: T``, ``energy: U``, ``energy: E``, ``energy: W``, so that no
+        user's name (a tension called T) can replace another column; a name that would still appear twice is
+        refused."""
         return unique_columns([("t", self.t), *self.q.items(), *self.rates.items(), *self.reactions.items(),
-                               *((ENERGY + k, v) for k, v in self.energy.items())], reserved=("mode",))
+                               *self.inputs.items(), *((ENERGY + k, v) for k, v in self.energy.items())],
+                              reserved=("mode",))
 
     def to_csv(self, path=None) -> str:
-        """The histories as CSV (t, mode, coordinates, rates, reactions, ``energy: T``, ``energy: U``,
+        """The histories as CSV (t, mode, coordinates, rates, reactions, inputs, ``energy: T``, ``energy: U``,
         ``energy: E``, ``energy: W``); written to ``path`` if given.
 
         Text cells (the mode) are made safe for spreadsheets (no formulas).  For long histories
@@ -277,6 +283,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
     n = layout.n
     t_start, t_end = segments[0].t0, segments[-1].t1
     grid = np.linspace(t_start, t_end, max(2, int(n_points)))
+    input_parts: list = []
     ts, ys, segs, react_parts, res_parts, T_parts, U_parts, limit_parts = [], [], [], [], [], [], [], []
     for i, seg in enumerate(segments):
         last = i == len(segments) - 1
@@ -287,6 +294,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
         ts.append(times)
         ys.append(Y)
         segs.append(np.full(len(times), i))
+        input_parts.append(input_histories(system, layout, times, Y, seg.params))
         forces = dict(vals["reactions"])
         forces.update({k: v for k, v in vals["frictions"].items() if not k.startswith("mu*")})
         react_parts.append(forces)
@@ -310,6 +318,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
     for part in res_parts:
         for k, v in part.items():
             residuals[k] = max(residuals.get(k, 0.0), float(np.max(np.abs(v))) if len(v) else 0.0)
+    inputs = {k: np.concatenate([part[k] for part in input_parts]) for k in (input_parts[0] if input_parts else {})}
     res_hist = {k: np.concatenate([np.abs(part[k]) if k in part else np.zeros(len(tt))
                                    for part, tt in zip(res_parts, ts)]) for k in residuals}
     T, U = np.concatenate(T_parts), np.concatenate(U_parts)
@@ -336,6 +345,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
         t, Y, seg_of = t[keep], Y[:, keep], seg_of[keep]
         reactions = {k: v[keep] for k, v in reactions.items()}
         limits = {k: v[keep] for k, v in limits.items()}
+        inputs = {k: v[keep] for k, v in inputs.items()}
         T, U, E, W = T[keep], U[keep], E[keep], W[keep]
         events = [e for e in events if e.t <= t[-1]]
         drift = float(np.max(np.abs(E - E[0] - W)) / scale)            # the monitors up to the stop
@@ -346,6 +356,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
                               list(segments), status, message, drift, balance, warns,
                               {c.name: c.kind for c in system.coordinate_info.values()}, limits)
     result.stop_reason = stop_reason
+    result.inputs = inputs
     return result
 
 
