@@ -9,6 +9,13 @@ Each quantity is read as a placeholder symbol of its unit's dimension, so the ex
 can be checked (``"l/2 + 5 kg"`` is refused, and so is a mass in a length field), and is then replaced
 by its exact value in SI units (``30 deg`` is π/6, ``2 ft`` is 381/625 m).  Nothing is evaluated by
 Python: the rest of the text goes to the restricted parser of :mod:`rigidkin.io.expressions`.
+
+>>> from rigidkin.io.expressions import default_scope
+>>> text, literals = split("l/2 + 5 cm", default_scope().with_names({"l": sp.Symbol("l")}))
+>>> text, [(q.text, q.si) for q in literals]
+('l/2 + Q0  ', [('5 cm', 1/20)])
+>>> unit_factor("deg")[0], unit_factor("ft")[0]
+(pi/180, 381/1250)
 """
 
 from __future__ import annotations
