@@ -107,8 +107,9 @@ def split(text, scope, where: str | None = None):
 
 def _unit_at(text: str, i: int, where, whole, declared) -> tuple[int, str | None]:
     """Where the unit starting at ``text[i]`` ends, and the unit's text (None: no unit here)."""
-    if whole is not None:                  # the field is one quantity: any unit of the unit grammar
-        rest = text[i:].strip()
+    rest = text[i:].strip()
+    if whole is not None and not set(_NAME.findall(rest)[1:]) & declared:   # one quantity: any unit (3 m^2/l with
+        # a parameter l is 3 m² over l, not over a litre)
         try:
             unit_dimension(rest, where)
             return len(text), rest
@@ -153,7 +154,8 @@ def read(text, scope, where: str | None, parse):
         value = parse(rewritten, sc, where)
     except InputError as exc:
         message = exc.message.replace(_snippet(rewritten), _snippet(text))
-        raise InputError(message, where=exc.where, hint=exc.hint) from None
+        raise InputError(message, where=exc.where, hint=_HINT + " In a unit, a name declared in the file (m, g, l "
+                         "...) after the first unit name is read as that name: write \"3 (kg*m^2)\".") from None
     return value, literals
 
 
