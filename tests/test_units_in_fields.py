@@ -138,3 +138,14 @@ def test_a_time_option_refuses_what_is_not_a_time(text):
     with pytest.raises(argparse.ArgumentTypeError) as err:
         end_time(text)
     assert repr(text) in str(err.value)
+
+
+def test_question_equations_take_units():
+    """An event 'theta = 30 deg' is theta = π/6; a length for the angle is refused naming the question."""
+    old = 'when = "N_A = 0"'
+    _, spec = parse_problem(LADDER.replace(old, 'when = "theta = 30 deg"'), "units.toml")
+    (when,) = [q.fields["when"] for q in spec.questions if "when" in q.fields]
+    assert sp.simplify(when.rhs - sp.pi / 6) == 0 and when.lhs.func.__name__ == "theta"
+    with pytest.raises(InputError) as err:
+        parse_problem(LADDER.replace(old, 'when = "N_A = 2 kg"'), "units.toml")
+    assert "ask.question[1].when" in str(err.value) and "2 kg" in str(err.value)

@@ -99,7 +99,11 @@ class UnitsAndDimensions:
         for n in getattr(self, "unknown_dimensions", ()):
             dims.pop(self.s.parameters[n], None)
         dims.update({lit.symbol: lit.dimension for lit in literals})
-        expected = ("a quantity", dimension) if dimension is not None else self.field_dimension(path)
+        if isinstance(value, sp.core.relational.Relational):       # an equation or condition: its sides agree
+            value, dimension, path_dim = value.lhs - value.rhs, None, None
+        else:
+            path_dim = self.field_dimension(path)
+        expected = ("a quantity", dimension) if dimension is not None else path_dim
         label = f"the field '{'.'.join(str(p) for p in path)}'"
         if expected is None:
             why = field_error(value, ONE, "", label, dims, consistent_only=True)
