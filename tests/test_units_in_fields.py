@@ -149,3 +149,10 @@ def test_question_equations_take_units():
     with pytest.raises(InputError) as err:
         parse_problem(LADDER.replace(old, 'when = "N_A = 2 kg"'), "units.toml")
     assert "ask.question[1].when" in str(err.value) and "2 kg" in str(err.value)
+
+
+def test_a_quantity_in_a_definition_is_refused_clearly():
+    text = LADDER.replace("[coordinates]", '[definitions]\na = { value = "l/2 + 5 cm", unit = "m" }\n[coordinates]')
+    with pytest.raises(InputError) as err:
+        parse_problem(text, "units.toml")
+    assert "definitions.a.value" in str(err.value) and "parameter" in str(err.value)

@@ -78,10 +78,6 @@ class UnitsAndDimensions:
         if table == "inputs" and field == "history":
             unit = self.spec.inputs[name].unit
             return ("the input's unit", unit_dimension(unit)) if unit else None
-        if table == "definitions":
-            d = self.spec.definitions[name]
-            unit = getattr(d, "unit", None)
-            return ("the definition's unit", unit_dimension(unit)) if unit else None
         return None
 
     def parsed(self, value, path, scope, parse, dimension=None):
@@ -91,6 +87,15 @@ class UnitsAndDimensions:
         if literals:
             self.check_quantities(expr, literals, path, dimension)
         return quantity_literals.to_si(expr, literals)
+
+    def no_quantities(self, value, path) -> None:
+        """Refuse a quantity with a unit in a definition (it would lose its unit: a definition's dimension
+        follows from its parameters)."""
+        if quantity_literals.split(value, self.scope, self.where(*path))[1]:
+            raise InputError("a definition is an expression of the parameters; a quantity with a unit in it would "
+                             "lose its dimension (the definition's dimension follows from its parameters).",
+                             where=self.where(*path), hint="Declare the quantity as a parameter (d = { unit = "
+                             "\"cm\", value = 5 }) and use its name in the definition.")
 
     def check_quantities(self, value, literals, path, dimension=None) -> None:
         """Refuse an expression with quantities (``"l/2 + 5 kg"``) whose terms cannot be added, or whose

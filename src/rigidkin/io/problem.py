@@ -240,7 +240,8 @@ class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
         self.declared(name, "definition", path)
         spec = d if isinstance(d, S.DefinitionSpec) else S.DefinitionSpec(value=d)
         expr_path = path + ("value",) if isinstance(d, S.DefinitionSpec) else path
-        expr = self.parsed(spec.value, expr_path, None, parse_scalar)
+        self.no_quantities(spec.value, expr_path)
+        expr = parse_scalar(spec.value, self.scope, self.where(*expr_path))
         self.scope.names[name] = self.call(path, self.s.define, name, expr, spec.unit, spec.description)
 
     def coordinate(self, name, c: S.CoordinateSpec):
