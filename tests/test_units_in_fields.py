@@ -156,3 +156,12 @@ def test_a_quantity_in_a_definition_is_refused_clearly():
     with pytest.raises(InputError) as err:
         parse_problem(text, "units.toml")
     assert "definitions.a.value" in str(err.value) and "parameter" in str(err.value)
+
+
+def test_a_bare_number_in_an_inner_sum_is_in_si_units():
+    """(l/2 + 0.1)·cos θ: the 0.1 is 0.1 m, as a bare number at the top of a field is; 5 kg there is refused."""
+    s = build('offset = "l/2*ey"', 'offset = "(l/2 + 0.1)*cos(theta)*ey"')
+    assert s.points["G"].offset != 0
+    with pytest.raises(InputError) as err:
+        build('offset = "l/2*ey"', 'offset = "(l/2 + 5 kg)*cos(theta)*ey"')
+    assert "points.G.offset" in str(err.value) and "5 kg" in str(err.value)
