@@ -165,3 +165,10 @@ def test_a_bare_number_in_an_inner_sum_is_in_si_units():
     with pytest.raises(InputError) as err:
         build('offset = "l/2*ey"', 'offset = "(l/2 + 5 kg)*cos(theta)*ey"')
     assert "points.G.offset" in str(err.value) and "5 kg" in str(err.value)
+
+
+def test_an_expression_with_too_many_quantities_is_refused():
+    many = " + ".join(["1 cm"] * 150)
+    with pytest.raises(InputError) as err:
+        build('length = "l"', f'length = "{many}"')
+    assert "bodies.rod.length" in str(err.value) and "more than 100 quantities" in str(err.value)

@@ -31,6 +31,10 @@ from ..base.errors import InputError
 from ..base.units import Dimension, parse_quantity, registry, unit_dimension
 from ..model.values import exact_decimal
 from .expressions import _snippet
+from .language import MAX_LENGTH
+
+#: the most quantities with units in one expression
+MAX_QUANTITIES = 100
 
 _NUMBER = r"(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 #: a number not inside a name (x2) or another number, then optional spaces and what may be a unit
@@ -81,8 +85,8 @@ def _placeholders(taken):
 def split(text, scope, where: str | None = None):
     """``text`` with each quantity replaced by a placeholder name of at most its length (columns kept), and
     the :class:`Literal` of each; ``(text, [])`` when it has none."""
-    if not isinstance(text, str) or not _START.search(text):
-        return text, []
+    if not isinstance(text, str) or len(text) > MAX_LENGTH or not _START.search(text):
+        return text, []                    # (the parser refuses a text too long)
     taken = set(scope.names) | set(scope.vectors) | set(scope.frames) | set(scope.functions) | {"dot", "ddot"}
     names = _placeholders(taken)
     whole = _WHOLE.fullmatch(text)
@@ -96,7 +100,10 @@ def split(text, scope, where: str | None = None):
             continue
         literal = text[m.start():end]
         factor, dim = unit_factor(unit)
-        name = next(names)
+        name = next(names, None)
+        if name is None or len(literals) >= MAX_QUANTITIES:
+            raise InputError(f"the expression has more than {MAX_QUANTITIES} quantities with units.", where=where,
+                             hint="Declare them as parameters with their units.")
         sym = sp.Symbol(name, real=True)
         literals.append(Literal(literal.strip(), sym, dim, exact_decimal(m.group("num")) * factor))
         out.append(text[pos:m.start()] + name.ljust(end - m.start()))
