@@ -172,3 +172,18 @@ def test_an_expression_with_too_many_quantities_is_refused():
     with pytest.raises(InputError) as err:
         build('length = "l"', f'length = "{many}"')
     assert "bodies.rod.length" in str(err.value) and "more than 100 quantities" in str(err.value)
+
+
+def test_simulate_takes_an_end_time_with_a_unit(capsys):
+    """--t-end "300 ms" ends where --t-end 0.3 does; --t-end "3 m" is refused as not a time (status 2)."""
+    import json
+
+    from rigidkin.cli import main
+
+    finals = []
+    for t_end in ("300 ms", "0.3"):
+        assert main(["simulate", "ladder", "--t-end", t_end, "--json", "--points", "5", "--initial", "theta=0.3"]) == 0
+        finals.append(json.loads(capsys.readouterr().out)["final_state"])
+    assert finals[0] == finals[1]
+    assert main(["simulate", "ladder", "--t-end", "3 m"]) == 2
+    assert "is not a time" in capsys.readouterr().err
