@@ -33,24 +33,25 @@ def _bundle(obj) -> dict:
     return data
 
 
-def _tex_spans(html: str) -> list[str]:
-    return re.findall(r'class="rk-tex [^"]*mathjax_process[^"]*">(.*?)</(?:span|div)>', html, flags=re.S)
+def _tex_spans(html_: str) -> list[str]:
+    """The TeX of every formula: the alttext of its <math> element."""
+    return [html.unescape(a) for a in re.findall(r'<math alttext="([^"]*)"', html_)]
 
 
-def test_solution_bundle_shows_dots_for_mathjax(ladder):
+def test_solution_bundle_shows_dots(ladder):
     data = _bundle(ladder.solve())
     assert {"text/html", "text/latex", "text/plain"} <= set(data)
-    html, tex = data["text/html"], data["text/latex"]
-    spans = " ".join(_tex_spans(html))
+    html_, tex = data["text/html"], data["text/latex"]
+    spans = " ".join(_tex_spans(html_))
     assert r"\dot{\theta}" in spans and r"\ddot{\theta}" in spans         # x' = l cos θ θ̇ ; the EOM in θ̈
     assert r"\ddot{\theta}" in tex
     for wrong in ("Derivative", r"\frac{d}{d t}", "theta'", "θ'", r"\theta{\left(t \right)}"):
         assert wrong not in spans and wrong not in tex
-    # MathJax typesets the TeX only: the rest of the fragment is marked for it to leave alone
-    assert 'class="rigidkin tex2jax_ignore mathjax_ignore"' in html
-    # every formula also as MathML (pages without MathJax), hidden inside a Jupyter output
-    assert html.count('<span class="rk-mathml">') + html.count('<div class="rk-mathml">') == len(_tex_spans(html))
-    assert ".jp-RenderedHTMLCommon .rigidkin .rk-mathml{display:none}" in html
+    # MathJax leaves the fragment alone; every formula is MathML (its TeX only as the alttext)
+    assert 'class="rigidkin tex2jax_ignore mathjax_ignore"' in html_
+    assert html_.count("<math ") == len(_tex_spans(html_)) > 5
+    assert "\\(" not in html_ and "\\[" not in html_ and "<script" not in html_
+    assert not re.search(r"(src|href)=\"https?:", html_)                        # nothing fetched from the network
 
 
 @pytest.mark.slow
@@ -139,9 +140,11 @@ def test_a_refused_value_is_said_and_the_figures_stay(ladder):
     assert html.escape(str(refused.value)) in view.status.value and "color:#a00" in view.status.value
 
 
-def test_stylesheet_shows_tex_in_jupyter_and_mathml_elsewhere(ladder, tmp_path):
-    """In headless Chromium: inside a JupyterLab output (.jp-RenderedHTMLCommon) the TeX is shown for
-    MathJax and the MathML hidden; on a plain page the other way round."""
+def test_an_exported_notebook_reads_offline(ladder, tmp_path):
+    """In headless Chromium with the network cut: the output as nbconvert's HTML export places it (inside
+    .jp-RenderedHTMLCommon, on a page whose MathJax from a CDN cannot load) shows every equation as laid-out
+    MathML (a θ̈ is a θ with a dot above, a fraction has a numerator above its denominator), and no raw TeX
+    is visible."""
     import shutil
     import tempfile
     from pathlib import Path
@@ -152,12 +155,22 @@ def test_stylesheet_shows_tex_in_jupyter_and_mathml_elsewhere(ladder, tmp_path):
     if chromium is None:
         pytest.skip("Chromium is not installed (apt-get install chromium)")
     fragment = _bundle(ladder.solve())["text/html"]
-    page_file = tmp_path / "outputs.html"
-    page_file.write_text(f'<!DOCTYPE html><html><head><meta charset="utf-8"></head><body>'
-                         f'<div id="lab" class="jp-RenderedHTMLCommon jp-RenderedHTML">{fragment}</div>'
-                         f'<div id="plain">{fragment}</div></body></html>', encoding="utf-8")
-    count = """([root, cls]) => [...document.querySelectorAll(`#${root} .${cls}`)]
-                 .map(e => getComputedStyle(e).display !== 'none')"""
+    cdn = "https://cdnjs.cloudflare.com/ajax/libs/mathjax/2.7.7/MathJax.js?config=TeX-AMS_CHTML-full,Safe"
+    page_file = tmp_path / "notebook.html"
+    page_file.write_text(f'<!DOCTYPE html><html><head><meta charset="utf-8"><script src="{cdn}"></script></head>'
+                         f'<body class="jp-Notebook"><div class="jp-OutputArea-output jp-RenderedHTMLCommon '
+                         f'jp-RenderedHTML" data-mime-type="text/html">{fragment}</div></body></html>',
+                         encoding="utf-8")
+    probe = """() => {
+        const maths = [...document.querySelectorAll('math')];
+        const box = e => e.getBoundingClientRect();
+        const fracs = [...document.querySelectorAll('mfrac')].map(f => box(f.children[0]).bottom
+                        <= box(f.children[1]).top + 1);
+        const dots = [...document.querySelectorAll('mover')].map(m => box(m.children[1]).bottom
+                        <= box(m.children[0]).top + box(m.children[0]).height / 2);
+        return {shown: maths.map(m => box(m).width > 5 && box(m).height > 5), fracs, dots,
+                text: document.body.innerText};
+    }"""
     with sync_api.sync_playwright() as p, tempfile.TemporaryDirectory() as profile:
         ctx = p.chromium.launch_persistent_context(profile, executable_path=chromium, headless=True,
                                                    args=["--headless", "--no-sandbox", "--disable-gpu"])
@@ -166,13 +179,14 @@ def test_stylesheet_shows_tex_in_jupyter_and_mathml_elsewhere(ladder, tmp_path):
             page.route("**/*", lambda route: route.continue_() if route.request.url.startswith("file:")
                        else route.abort())
             page.goto(page_file.as_uri())
-            shown = {(root, cls): page.evaluate(count, [root, cls])
-                     for root in ("lab", "plain") for cls in ("rk-tex", "rk-mathml")}
+            seen = page.evaluate(probe)
         finally:
             ctx.close()
-    assert len(shown["lab", "rk-tex"]) > 5 and len(shown["lab", "rk-tex"]) == len(shown["lab", "rk-mathml"])
-    assert all(shown["lab", "rk-tex"]) and not any(shown["lab", "rk-mathml"])
-    assert not any(shown["plain", "rk-tex"]) and all(shown["plain", "rk-mathml"])
+    assert len(seen["shown"]) > 5 and all(seen["shown"])
+    assert seen["fracs"] and all(seen["fracs"]) and seen["dots"] and all(seen["dots"])
+    for tex in ("\\frac", "\\ddot", "\\theta", "\\[", "\\("):
+        assert tex not in seen["text"]
+    assert "θ" in seen["text"] or "\U0001d703" in seen["text"]              # θ, drawn as mathematical italic
 
 
 @pytest.mark.slow

@@ -295,6 +295,13 @@ def parse_quantity(value: float | int | str, unit: str | None = None, where: str
     have that dimension (a bare number is taken as already in it).  The result is finite; anything
     else is refused with an :class:`~rigidkin.base.errors.InputError` naming ``where``.  Command-line values
     (``--set m=2kg``, ``--initial theta=30deg``) are read here too.
+
+    >>> parse_quantity("500 g"), parse_quantity(5, "cm"), parse_quantity("30 deg", dimension=ONE)
+    (0.5, 0.05, 0.5235987755982988)
+    >>> parse_quantity("2 kg", dimension=LENGTH)
+    Traceback (most recent call last):
+    ...
+    rigidkin.base.errors.InputError: '2 kg' has dimension M, where length (L) is expected. Give a value in ...
     """
     reg = registry()
     if isinstance(value, bool) or not isinstance(value, int | float | str):

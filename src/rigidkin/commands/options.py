@@ -24,6 +24,7 @@ import sys
 
 from ..base.errors import InputError
 from ..base.textsafe import terminal_safe
+from ..base.units import TIME, parse_quantity
 
 EXIT_OK, EXIT_UNANSWERED, EXIT_INPUT, EXIT_STOPPED, EXIT_TIME, EXIT_INTERRUPTED = 0, 1, 2, 3, 4, 130
 
@@ -57,6 +58,20 @@ def _real(text: str, what: str) -> float:
     return value
 
 
+def _time(text: str, what: str) -> float:
+    """A time in seconds: a plain number (seconds) or a quantity with a unit of time ("500 ms", "2 min")."""
+    try:
+        return _real(text, what)
+    except argparse.ArgumentTypeError:
+        if not isinstance(text, str) or not any(ch.isalpha() for ch in text) or text.strip().lower().lstrip(
+                "+-") in ("nan", "inf", "infinity"):
+            raise
+    try:                                               # pint: read only when a unit is given
+        return parse_quantity(text, None, None, TIME)
+    except InputError as exc:
+        raise argparse.ArgumentTypeError(f"{_show(text)} is not a time ({exc.message.rstrip('.')}); {what}") from None
+
+
 def _show(text) -> str:
     text = str(text)
     return repr(text if len(text) <= 40 else text[:37] + "...")
@@ -75,24 +90,26 @@ def tolerance(text: str) -> float:
 
 
 def end_time(text: str) -> float:
-    """An end time in seconds: finite, positive and at most MAX_TIME."""
-    v = _real(text, "give the end time in seconds, e.g. 5")
+    """An end time in seconds (or with a unit of time: ``"500 ms"``): finite, positive and at most MAX_TIME."""
+    v = _time(text, "give the end time in seconds or with a unit of time, e.g. 5 or '500 ms'")
     if not 0 < v <= MAX_TIME:
         raise argparse.ArgumentTypeError(f"{v:g} s is not a positive end time of at most {MAX_TIME:g} s")
     return v
 
 
 def start_time(text: str) -> float:
-    """A start time in seconds: finite, of magnitude at most MAX_TIME."""
-    v = _real(text, "give the start time in seconds, e.g. 0")
+    """A start time in seconds (or with a unit of time): finite, of magnitude at most MAX_TIME."""
+    v = _time(text, "give the start time in seconds or with a unit of time, e.g. 0 or '2 ms'")
     if abs(v) > MAX_TIME:
         raise argparse.ArgumentTypeError(f"the time {v:g} s is beyond ±{MAX_TIME:g} s")
     return v
 
 
 def timeout(text: str) -> float:
-    """A time limit in seconds: finite, 0 (no limit) or positive up to MAX_TIMEOUT."""
-    v = _real(text, f"give the limit in seconds (at most {MAX_TIMEOUT:g}; 0: no limit)")
+    """A time limit in seconds (or with a unit of time: ``"10 min"``): finite, 0 (no limit) or positive up to
+    MAX_TIMEOUT."""
+    v = _time(text, f"give the limit in seconds or with a unit of time, e.g. 600 or '10 min' (at most "
+                    f"{MAX_TIMEOUT:g} s; 0: no limit)")
     if v < 0 or v > MAX_TIMEOUT:
         raise argparse.ArgumentTypeError(f"the time limit {v:g} s must lie between 0 (no limit) and "
                                          f"{MAX_TIMEOUT:g} s (one day)")
@@ -125,7 +142,8 @@ chunk = whole(1, 10_000_000, "a number of runs per task")
 def add_timeout(p, default: float = 600) -> None:
     """The ``--timeout`` option: the whole command stops after that many seconds (exit status 4)."""
     p.add_argument("--timeout", type=timeout, default=default, metavar="SECONDS",
-                   help=f"stop the whole command after SECONDS (default {default:g}; 0: no limit; at most "
+                   help=f"stop the whole command after SECONDS, or a time with a unit such as '10 min' (default "
+                        f"{default:g}; 0: no limit; at most "
                         f"{MAX_TIMEOUT:g}); exit status 4")
 
 

@@ -105,9 +105,9 @@ class Questions:
             elif key in ("start", "at"):
                 f[key] = self.state(v, kpath)
             elif key in ("when", "until"):
-                f[key] = parse_equation(v, qs, self.where(*kpath))
+                f[key] = self.parsed(v, kpath, qs, parse_equation)          # "theta = 30 deg": units checked
             elif key in ("holds", "regime"):
-                f[key] = parse_condition(v, qs, self.where(*kpath))
+                f[key] = self.parsed(v, kpath, qs, parse_condition)
             elif key == "reaction":
                 self._lookup(self.reactions, "reaction", v, kpath)
                 f[key] = v
@@ -116,7 +116,7 @@ class Questions:
             elif key == "duration":            # "0.5 s" as well as "dt" or 0.5 (seconds)
                 f[key] = self.value(v, kpath, TIME)
             elif key == "expression":
-                f[key] = parse_scalar(v, qs, self.where(*kpath))
+                f[key] = self.parsed(v, kpath, qs, parse_scalar)
             elif key == "over":
                 f[key] = tuple(self.value(x, kpath + (i,)) for i, x in enumerate(v))
             elif key == "phase":
@@ -131,8 +131,8 @@ class Questions:
     def phase(self, p: S.PhaseSpec, path) -> dict:
         out = {"name": p.name or f"phase {path[-1] + 1}", "mode": self.mode(p.mode, path + ("mode",)),
                "set": self.substitutions(p.set, path + ("set",))}
-        out["until"] = None if p.until is None else parse_equation(p.until, self._question_scope(),
-                                                                    self.where(*path, "until"))
+        out["until"] = None if p.until is None else self.parsed(p.until, path + ("until",), self._question_scope(),
+                                                                parse_equation)
         return out
 
 

@@ -45,6 +45,7 @@ from .reading import (  # noqa: F401  (public through here)
 from .spec import ProblemSpec
 
 _UNIT_QUANTITY = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*[A-Za-z°µ]")
+_QUANTITY_ALONE = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*[A-Za-z°µ][\w\s*/^()°µ.-]*")
 _NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
 _FRICTION_WORDS = ("smooth", "rolling", "no-slip", "no_slip")
 
@@ -74,15 +75,16 @@ class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
             raise InputError(f"this cannot be built ({type(exc).__name__}: {exc}).", where=self.where(*path),
                              hint="Check the expressions and names in this table.") from None
 
-    def scalar(self, value, path, scope=None) -> sp.Expr:
-        """A scalar expression, real and finite once the parameters' values are put in."""
+    def scalar(self, value, path, scope=None, dimension=None) -> sp.Expr:
+        """A scalar expression, real and finite once the parameters' values are put in; quantities with units
+        in it are of the field's dimension and are read in SI units."""
         where = self.where(*path)
-        return require(parse_scalar(value, scope or self.scope, where), REAL, "value", where,
+        return require(self.parsed(value, path, scope, parse_scalar, dimension), REAL, "value", where,
                        self.s.parameter_values(), InputError)
 
     def vector(self, value, path, scope=None) -> Vector:
         where = self.where(*path)
-        vec = parse_vector(value, scope or self.scope, where)
+        vec = self.parsed(value, path, scope, parse_vector)
         for measure, _frame in vec.args:
             for comp in measure:
                 require(comp, REAL, "vector component", where, self.s.parameter_values(), InputError)
@@ -90,10 +92,14 @@ class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
 
     def value(self, value, path, dimension=None) -> sp.Expr:
         """A number, a quantity with a unit ('30 deg', converted to SI; of ``dimension`` if given) or an
-        expression."""
+        expression (which may hold quantities: "theta0 + 5 deg")."""
         if isinstance(value, str) and _UNIT_QUANTITY.match(value):
-            return sp.Float(to_si(value, None, self.where(*path), dimension))
-        return self.scalar(value, path, self._question_scope())
+            try:
+                return sp.Float(to_si(value, None, self.where(*path), dimension))
+            except InputError:
+                if _QUANTITY_ALONE.fullmatch(value):
+                    raise
+        return self.scalar(value, path, self._question_scope(), dimension)
 
     def _lookup(self, table: dict, kind: str, name: str | None, path, optional=False):
         if name is None:
@@ -237,6 +243,7 @@ class _Builder(ConstraintsAndLoads, Questions, UnitsAndDimensions):
         self.declared(name, "definition", path)
         spec = d if isinstance(d, S.DefinitionSpec) else S.DefinitionSpec(value=d)
         expr_path = path + ("value",) if isinstance(d, S.DefinitionSpec) else path
+        self.no_quantities(spec.value, expr_path)
         expr = parse_scalar(spec.value, self.scope, self.where(*expr_path))
         self.scope.names[name] = self.call(path, self.s.define, name, expr, spec.unit, spec.description)
 

@@ -72,13 +72,27 @@ def _shown(d: Dimension) -> str:
     return f"{d} ({unit})" if unit else "1 (a number)"
 
 
-def field_error(value, want: Dimension, what: str, label: str, dims: dict) -> str | None:
+def _without_bare_numbers(expr):
+    """``expr`` with the bare numbers of its sums left out: a number added to a quantity is in SI units of the
+    quantity's dimension (``(l + 0.1)*sin(theta)``: 0.1 m)."""
+    expr = sp.sympify(expr)
+    if not expr.args or not expr.free_symbols:
+        return expr
+    if expr.is_Add:
+        kept = [_without_bare_numbers(a) for a in expr.args if a.free_symbols]
+        return sp.Add(*kept) if kept else expr
+    return expr.func(*[_without_bare_numbers(a) for a in expr.args])
+
+
+def field_error(value, want: Dimension, what: str, label: str, dims: dict, consistent_only: bool = False) -> str | None:
     """Why ``value`` (a scalar or a vector) is not of dimension ``want``, naming the term; None when it is
-    (or when a quantity of unknown dimension enters it)."""
+    (or when a quantity of unknown dimension enters it).  ``consistent_only``: only whether its terms can be
+    added (a field with no dimension of its own)."""
     if value is None or callable(value) and not isinstance(value, sp.Basic | Vector):
         return None
     for comp in _components(value):
-        comp = sp.Add(*[a for a in sp.Add.make_args(sp.sympify(comp)) if a.free_symbols])   # a bare number: in SI
+        comp = _without_bare_numbers(comp)
+        comp = sp.Add(*[a for a in sp.Add.make_args(comp) if a.free_symbols])   # a bare number: in SI
         if comp == 0:
             continue
         try:
@@ -87,6 +101,8 @@ def field_error(value, want: Dimension, what: str, label: str, dims: dict) -> st
             continue
         except DimensionMismatch as exc:
             return f"{label} is not dimensionally consistent: {exc.message}"
+        if consistent_only:
+            continue
         if got != want and not (got.is_dimensionless and want.is_dimensionless):
             term = sp.Add.make_args(comp)[0] if comp.is_Add else comp
             return (f"{label} has dimension {_shown(got)}, where {what} {_shown(want)} is expected: the term "

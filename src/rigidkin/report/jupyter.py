@@ -5,11 +5,12 @@ constraints and loads; a solution's equations of motion and reactions; a simulat
 events with its figures).  The whole derivation is ``rigidkin.report.build_document`` /
 ``write_report``; sliders that re-simulate are :func:`explore` (:mod:`rigidkin.report.widgets`).
 
-Every formula is written twice in the HTML: as TeX (``\\(\\dot{\\theta}\\)``), which JupyterLab,
-Notebook and nbconvert's pages typeset with their MathJax, and as presentation MathML for any other
-page that shows the HTML without MathJax.  A stylesheet shows one of the two: the TeX inside a
-Jupyter output (``.jp-RenderedHTMLCommon``, ``.rendered_html``), the MathML elsewhere.  The rest of
-the fragment is marked for MathJax to leave alone (a ``$`` in a description stays a dollar sign).
+Every formula is presentation MathML, which browsers draw themselves (Chromium, Firefox, Safari): a
+notebook's output reads the same in JupyterLab, in Notebook, in VS Code and in a notebook exported to
+HTML and opened offline (nbconvert's page loads MathJax from the network; nothing here needs it).  The
+formula's TeX travels with it as the ``alttext`` of its ``<math>`` element (to copy, or for a reader that
+prefers it); ``text/latex`` bundles (``_repr_latex_``) stay TeX.  The fragment is marked for MathJax to
+leave alone (a ``$`` in a description stays a dollar sign), and it holds no script.
 """
 
 from __future__ import annotations
@@ -28,19 +29,14 @@ from .widgets import explore as _explore
 
 t = dynamicsymbols._t
 
-#: MathJax's classes: 2 (classic Notebook) and 3 (JupyterLab, Notebook 7) — skip this, typeset that.
+#: MathJax's classes (2: classic Notebook; 3: JupyterLab, Notebook 7): leave this fragment alone.
 IGNORE = "tex2jax_ignore mathjax_ignore"
-PROCESS = "tex2jax_process mathjax_process"
-_JUPYTER = (".jp-RenderedHTMLCommon", ".rendered_html")
 
 STYLE = ("<style>.rigidkin table{border-collapse:collapse;margin:.4em 0}.rigidkin th,.rigidkin td{border:1px "
          "solid #ccc;padding:.2em .5em;text-align:left;vertical-align:top}.rigidkin caption{text-align:left;"
          "font-weight:bold}.rigidkin .step{margin:.4em 0}.rigidkin .why{font-style:italic;color:#444}"
          ".rigidkin .eqs{overflow-x:auto}.rigidkin .law{font-size:smaller;font-weight:normal;margin-left:.6em}"
-         ".rigidkin .rk-tex{display:none}"
-         + "".join(f"{j} .rigidkin .rk-tex{{display:inline}}{j} .rigidkin div.rk-tex{{display:block}}"
-                   f"{j} .rigidkin .rk-mathml{{display:none}}" for j in _JUPYTER)
-         + "</style>")
+         ".rigidkin math[display=block]{margin:.3em 0}</style>")
 
 
 def _esc(s: str) -> str:
@@ -53,16 +49,12 @@ def tex(m: Math) -> str:
 
 
 def _math(m: Math, display: bool) -> str:
-    """A formula as TeX for MathJax and as MathML for pages without it; one of them is shown."""
-    source = _esc(tex(m))
-    if display:
-        return (f'<div class="rk-tex {PROCESS}">\\[{source}\\]</div>'
-                f'<div class="rk-mathml">{_mathml(m, True)}</div>')
-    return f'<span class="rk-tex {PROCESS}">\\({source}\\)</span><span class="rk-mathml">{_mathml(m, False)}</span>'
+    """A formula as MathML (drawn by the browser, no MathJax), its TeX as the ``alttext``."""
+    return _mathml(m, display).replace("<math ", f'<math alttext="{html_text(tex(m))}" ', 1)
 
 
 def block_html(b) -> str:
-    """One block of a document as an HTML fragment for a notebook (TeX and MathML, the report's layout)."""
+    """One block of a document as an HTML fragment for a notebook (MathML, the report's layout)."""
     return _report_block(b, _math, heading="h4", anchors=False)
 
 

@@ -2,7 +2,7 @@
 redraws its time histories and the animation of its motion.
 
 >>> view = rigidkin.jupyter.explore(system, t_final=3)     # doctest: +SKIP
->>> view                                                    # shows the sliders, the plot, the animation
+>>> view                           # shows the sliders, the plot, the animation  # doctest: +SKIP
 
 ``explore`` takes a System or a Solution (its system); ``start=["theta"]`` adds sliders for the
 start of coordinates or rates (``"dot(theta)"``).  Sliders run from a quarter to four times each
