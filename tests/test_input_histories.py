@@ -81,7 +81,8 @@ def test_no_inputs_no_columns():
     s.collar("rail", b, s.inertial.x, point=C)
     res = simulate(s, 1.0, n_points=5)
     assert res.inputs == {}
-    assert set(res.columns()) == {"t", "x", "dot(x)", "N_rail", "M_rail", "T", "U", "E", "W"}
+    assert set(res.columns()) == {"t", "x", "dot(x)", "N_rail", "M_rail", "energy: T", "energy: U", "energy: E",
+                                  "energy: W"}
 
 
 def _cli(*args, cwd):
