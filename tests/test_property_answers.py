@@ -34,7 +34,7 @@ from rigidkin.cli import main
 from rigidkin.io.load import load_system
 
 t = dynamicsymbols._t
-N_QUICK, N_ALL = 8, 32
+N_QUICK, N_ALL = 5, 32
 STOP_REASONS = {"mode-unavailable", "no-consistent-mode", "ambiguous", "accumulation", "max-events",
                 "relation-mismatch", "outside-domain", "constraint-drift", "energy-drift"}
 
@@ -343,10 +343,7 @@ def check_event(system, sol, ans, facts):
     if facts["conservative"]:
         start = ans.question.fields["start"]
         e0 = _energy(system, {_name(k): float(sp.sympify(v).xreplace(values)) for k, v in start.items()})
-        e1 = _energy(system, {_name(k): v for k, v in num.items()
-                              if _name(k).strip("dot()") in system.coordinate_info and
-                              (sp.sympify(k).func if not isinstance(k, sp.Derivative) else k.expr.func)
-                              in [q.func for q in sol.coordinates]})
+        e1 = _energy(system, {_name(k): v for k, v in num.items()})
         assert e1 == pytest.approx(e0, rel=1e-7, abs=1e-9), f"{ans.text}: energy {e1} vs {e0} at the start"
 
 
