@@ -58,7 +58,7 @@ def pendulum(rng):
     spring = '\nspring = { type = "rotational_spring", body_a = "rod", stiffness = "k" }' if k else ""
     pk = f'k = {{ unit = "N*m/rad", value = {k} }}\n' if k else ""
     pc = f'c = {{ unit = "N*m*s/rad", value = {c} }}\n' if c else ""
-    damper = (f'\ndamp = {{ type = "rotational_damper", body_a = "rod", coefficient = "c" }}' if c else "")
+    damper = ('\ndamp = { type = "rotational_damper", body_a = "rod", coefficient = "c" }' if c else "")
     text = f"""
 title = "Pendulum with a torsional spring"
 [parameters]

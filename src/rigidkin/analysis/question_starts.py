@@ -15,11 +15,12 @@ import warnings
 import numpy as np
 import sympy as sp
 
-from ..base.errors import InputError
+from ..base.errors import InputError, RigidkinError
 from ..derive.derivation import derivation_of
 from ..numeric.contacts.modes import Hybrid
 from ..numeric.contacts.vocabulary import OPEN, ModeUnavailable
 from ..numeric.state import assembled_changes, initial_values, parameter_vector
+from .linear import dependent_coordinates
 
 
 def _number(value, values: dict) -> float | None:
@@ -95,9 +96,6 @@ def assembled_start(system, start: dict, mode: dict | None = None, substitutions
 def _closed_form(system, lay, y, start, moved, mode, substitutions, values) -> dict:
     """The moved coordinates in closed form (the position constraints solved by sympy on the branch Newton's
     method found, e.g. θ = asin(c/l)), or {} where sympy finds none."""
-    from ..base.errors import RigidkinError
-    from .linear import dependent_coordinates
-
     qs = [lay.coordinates[lay.names.index(nm)] for nm in moved]
     known = {q: start.get(q, sp.Float(float(y[i]), 15)) for i, q in enumerate(lay.coordinates) if q not in qs}
     try:
