@@ -170,16 +170,17 @@ kind = "equilibrium"
 def sliding(rng):
     """A cylinder released on an incline with Coulomb friction (sliding, then maybe rolling)."""
     rt, _ = _length(rng, 0.05, 0.3)
+    beta, mu, v0 = rng.randint(10, 50), round(rng.uniform(0.05, 0.6), 2), round(rng.uniform(0.2, 3), 2)
     text = f"""
 title = "Cylinder on a rough incline"
 [parameters]
 m = {{ unit = "kg", value = {round(rng.uniform(0.5, 5), 2)} }}
 r = {{ {rt} }}
-beta = {{ unit = "rad", value = "{rng.randint(10, 50)} deg" }}
+beta = {{ unit = "rad", value = "{beta} deg" }}
 g = {{ unit = "m/s^2", value = 9.81 }}
-mu = {{ unit = "", value = {round(rng.uniform(0.05, 0.6), 2)} }}
+mu = {{ unit = "", value = {mu} }}
 [coordinates]
-x = {{ sense = "centre down the incline", kind = "length", initial = 0, rate = {round(rng.uniform(0, 3), 2)} }}
+x = {{ sense = "centre down the incline", kind = "length", initial = 0, rate = {v0} }}
 phi = {{ sense = "rotation, clockwise", initial = 0, rate = 0 }}
 [frames]
 I = {{ angle = "-beta", basis = ["es", "en", "ez"] }}
@@ -198,8 +199,18 @@ normal_name = "N"
 friction_name = "F"
 [loads]
 gravity = {{ type = "gravity", g = "g" }}
+[[ask.question]]
+kind = "phases"
+name = "to_rolling"
+start = {{ x = 0, "dot(x)" = {v0}, phi = 0, "dot(phi)" = 0 }}
+[[ask.question.phase]]
+name = "sliding"
+until = "slip(ground) = 0"
+[[ask.question.phase]]
+name = "rolling"
+mode = {{ ground = "stick" }}
 """
-    return text, {"conservative": False, "closed": []}
+    return text, {"conservative": False, "closed": [], "slide": (math.radians(beta), mu, v0)}
 
 
 def ladder(rng):
@@ -347,6 +358,32 @@ def check_event(system, sol, ans, facts):
         assert e1 == pytest.approx(e0, rel=1e-7, abs=1e-9), f"{ans.text}: energy {e1} vs {e0} at the start"
 
 
+def check_phases(system, sol, ans, facts):
+    """Sliding until rolling begins: the slip vanishes at the reported end state; by hand, the slip speed
+    falls at g (3 µ cos β − sin β), so rolling begins after v0 / (g (3 µ cos β − sin β)) when that is
+    positive, at the speed v0 + g (sin β − µ cos β) t*; the simulation sticks then too."""
+    from rigidkin.numeric import simulate
+
+    beta, mu, v0 = facts["slide"]
+    g = 9.81
+    values = _values(system)
+    sliding = ans.details["phases"][0]
+    rate = 3 * mu * math.cos(beta) - math.sin(beta)
+    assert sliding.happens == (rate > 0), ans.text
+    if not sliding.happens:
+        return
+    end = {k: float(sp.sympify(v).xreplace(values)) for k, v in sliding.end_state.items()}
+    x, phi = sol.coordinates if sol.coordinates[0].func.__name__ == "x" else sol.coordinates[::-1]
+    r_ = [v for k, v in values.items() if k.name == "r"][0]
+    assert abs(end[x.diff(t)] - r_ * end[phi.diff(t)]) < 1e-9 * max(1.0, v0), "the slip does not vanish there"
+    t_star = v0 / (g * rate)
+    assert float(sp.sympify(sliding.duration).xreplace(values)) == pytest.approx(t_star, rel=1e-10)
+    assert end[x.diff(t)] == pytest.approx(v0 + g * (math.sin(beta) - mu * math.cos(beta)) * t_star, rel=1e-10)
+    if t_star < 1.0:
+        res = simulate(system, 1.0, n_points=11)
+        assert any(abs(e.t - t_star) < 1e-6 * max(1.0, t_star) for e in res.events), (t_star, res.events)
+
+
 def _name(k) -> str:
     if isinstance(k, sp.Derivative):
         return f"dot({k.expr.func.__name__})"
@@ -394,6 +431,8 @@ def _run(seed, tmp_path, capsys):
             check_equilibria(system, sol, ans.details["equilibria"])
         elif ans.question.kind == "event":
             check_event(system, sol, ans, facts)
+        elif ans.question.kind == "phases":
+            check_phases(system, system.solve(mode={"ground": "slip"}), ans, facts)
     check_simulation(path, facts, capsys)
     check_histories(system, facts)
     return answered
