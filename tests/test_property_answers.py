@@ -22,6 +22,7 @@ from __future__ import annotations
 import json
 import math
 import random
+import warnings
 
 import numpy as np
 import pytest
@@ -34,7 +35,7 @@ from rigidkin.cli import main
 from rigidkin.io.load import load_system
 
 t = dynamicsymbols._t
-N_QUICK, N_ALL = 5, 32
+N_QUICK, N_ALL = 6, 36
 STOP_REASONS = {"mode-unavailable", "no-consistent-mode", "ambiguous", "accumulation", "max-events",
                 "relation-mismatch", "outside-domain", "constraint-drift", "energy-drift"}
 
@@ -264,7 +265,47 @@ start = {{ theta = {th0}, "dot(theta)" = 0 }}
                   "closed": [("x", lambda q: q["x"] - l_ * np.sin(q["theta"]))]}
 
 
-BLOCKS = (pendulum, collar_spring, disk_spring, sliding, ladder)
+def rod_on_line(rng):
+    """A rod pinned at O whose end B is held on the line x = c (θ = asin(c/l)), from a rough declared angle;
+    about one case in three puts the line out of reach (c > l): every command refuses it naming the residual c − l."""
+    l_ = round(rng.uniform(0.5, 2.0), 2)
+    c = round(l_ * (rng.uniform(1.1, 1.6) if rng.random() < 0.4 else rng.uniform(-0.9, 0.9)), 3)
+    near = math.asin(c / l_) if abs(c) < l_ else math.pi / 2
+    rough = round(near + rng.uniform(-0.3, 0.3), 3)
+    text = f"""
+title = "Rod whose end is held on a line"
+[parameters]
+m = {{ unit = "kg", value = {round(rng.uniform(0.5, 5), 2)} }}
+l = {{ unit = "m", value = {l_} }}
+c = {{ unit = "m", value = {c} }}
+g = {{ unit = "m/s^2", value = 9.81 }}
+[coordinates]
+theta = {{ sense = "angle of the rod from the downward vertical", initial = {rough}, rate = 0 }}
+[frames]
+R = {{ angle = "theta" }}
+[points]
+B = {{ offset = "-l*R.y", body = "rod" }}
+G = {{ offset = "-l/2*R.y" }}
+Q = {{ offset = "c*Ex" }}
+[bodies]
+rod = {{ shape = "slender_rod", mass = "m", length = "l", axis = "y", frame = "R", at = "G" }}
+[constraints]
+O = {{ type = "pin", point = "O", body_a = "rod" }}
+B = {{ type = "contact", body = "rod", centre = "B", unilateral = false, \
+      surface = {{ type = "line", point = "Q", normal = "-Ex" }} }}
+[loads]
+gravity = {{ type = "gravity", g = "g" }}
+[[ask.question]]
+kind = "value"
+name = "angle"
+expression = "theta"
+at = {{ theta = {round(near + rng.uniform(-0.3, 0.3), 3)} }}
+"""
+    return text, {"conservative": True, "closed": [("theta", lambda q: l_ * np.sin(q["theta"]) - c)],
+                  "line": (c, l_)}
+
+
+BLOCKS = (pendulum, collar_spring, disk_spring, sliding, ladder, rod_on_line)
 
 
 def case(seed: int):
@@ -422,20 +463,42 @@ def _run(seed, tmp_path, capsys):
     name, text, facts = case(seed)
     path = tmp_path / f"{name}-{seed}.toml"
     path.write_text(text)
+    if "line" in facts and abs(facts["line"][0]) > facts["line"][1]:
+        return _unreachable(path, facts, capsys)
     system, spec = load_system(str(path))
     sol = system.solve()
     answered = 0
-    for ans in _answers(system, spec.questions):
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        answers = list(_answers(system, spec.questions))
+    for ans in answers:
         answered += 1
+        if "line" in facts:               # the question's at assembled onto the line: θ = asin(c/l), said so
+            c, l_ = facts["line"]
+            assert float(sp.sympify(ans.value).xreplace(_values(system))) == pytest.approx(math.asin(c / l_),
+                                                                                        abs=1e-12)
+            assert any("assembled onto them" in str(w.message) for w in said)
         if ans.question.kind == "equilibrium":
             check_equilibria(system, sol, ans.details["equilibria"])
         elif ans.question.kind == "event":
             check_event(system, sol, ans, facts)
         elif ans.question.kind == "phases":
             check_phases(system, system.solve(mode={"ground": "slip"}), ans, facts)
+    code = main(["solve", str(path), "--no-cache"])
+    capsys.readouterr()
+    assert code == (0 if answered == len(spec.questions) else 1)      # a refused question is said: exit 1
     check_simulation(path, facts, capsys)
     check_histories(system, facts)
     return answered
+
+
+def _unreachable(path, facts, capsys):
+    """A line the rod end cannot reach: solve and simulate refuse it (exit 2), naming the gap c − l."""
+    c, l_ = facts["line"]
+    for argv in (["solve", str(path), "--no-cache"], ["simulate", str(path), "--t-end", "0.5", "--no-cache"]):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert f"contact B keeps a residual of {abs(c) - l_:.4g}" in err, err
 
 
 def _answers(system, questions):
@@ -462,3 +525,5 @@ def test_random_problem_answers_check_themselves(seed, tmp_path, capsys):
 def test_generator_is_deterministic():
     assert [case(s)[1] for s in range(10)] == [case(s)[1] for s in range(10)]
     assert len({case(s)[1] for s in range(N_ALL)}) == N_ALL
+    lines = [case(s)[2]["line"] for s in range(N_ALL) if "line" in case(s)[2]]
+    assert any(abs(c) > l_ for c, l_ in lines) and any(abs(c) < l_ for c, l_ in lines)   # both kinds drawn
