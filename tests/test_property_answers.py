@@ -2,17 +2,22 @@
 
 Seeded and deterministic: each case draws one of a few building blocks (a pendulum with a torsional spring
 and a damper, a collar on a track with a spring and a pendulum rod, a disk rolling on an incline against a
-spring, a cylinder sliding onto a rough incline, a ladder on a wall and a floor) with random parameter values
-in random declared units, and random starting states.  For every file:
+spring, a cylinder sliding onto a rough incline, a ladder on a wall and a floor, a rod whose end is held on a
+line) with random parameter values in random declared units, and random starting states.  For every file:
 
 * every printed answer passes its own back-substitution, checked here independently of the answering code:
   an equilibrium makes the accelerations (the file's equations of motion, rates zero) vanish with the
   parameters' values; each natural frequency is real and its square an eigenvalue of the numeric stiffness
-  −∂q̈/∂q at that equilibrium (central differences); an event's condition holds at the reported state, and
-  (conservative case) the reported state has the energy of the start;
-* every simulation keeps its constraints — the closed-form constraints of the building block (x = l sin θ on
-  the wall, x = r θ rolling) hold along the history — or stops with a named stop reason and exit 3; it is
-  never "completed" with a violation.
+  −∂q̈/∂q at that equilibrium (central differences), and the stability agrees with that stiffness; an
+  event's condition holds at the reported state (the ladder's wall push by Newton's law by hand), and
+  (conservative case) the reported state has the energy of the start; the sliding cylinder starts to roll
+  after v0 / (g (3 µ cos β − sin β)) (by hand, and the simulation's event); a question's start off the
+  rod's line is assembled onto it, θ = asin(c/l); a question refused is said (solve exits 1), never answered
+  wrongly;
+* every simulation, accurate and coarse, keeps its constraints and its energy balance — the closed-form
+  constraints of the building block (x = l sin θ on the wall, x = r θ rolling, l sin θ = c on the line) hold
+  along the history — or stops with a named stop reason and exit 3: it is never "completed" with a
+  violation; a line out of reach is refused by solve and simulate naming the gap c − l.
 
 The larger part is marked slow (``pytest -m slow``).
 """
