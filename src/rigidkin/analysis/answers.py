@@ -22,6 +22,7 @@ from .equilibrium import equilibria
 from .events import _num, condition_expression, event, extreme, threshold
 from .integrals import along_motion, energy_integral, first_integrals
 from .phases import Phase, run_phases
+from .question_starts import question_fields
 from .questions import KINDS, Answer, Question
 
 t = dynamicsymbols._t
@@ -84,6 +85,7 @@ def answer(system, question: Question, context: dict | None = None) -> Answer:
     if kind not in KINDS:
         raise InputError(f"unknown question kind '{kind}'.", where=question.where, hint=f"Kinds: {', '.join(KINDS)}.")
     try:
+        f = question_fields(system, f, question.where or question.name)    # the one rule for starting states
         return _HANDLERS[kind](system, question, f, context)
     except RigidkinError as exc:
         if question.where and not exc.where:
