@@ -177,13 +177,24 @@ def _tidy(e: sp.Basic) -> sp.Basic:
 TRIG_ARGS_LIMIT = 3
 
 
+#: A large expression (over SIMPLIFY_LIMIT operations) over more distinct denominators than this is not
+#: reduced: bringing it over one denominator (``cancel``) costs minutes (Lagrange's accelerations of a
+#: cylinder rolling in a rolling shell: 989 operations over 7 denominators) for a form nobody reads.
+DENOMINATORS_LIMIT = 3
+
+
+def _denominators(expr: sp.Basic) -> int:
+    """The number of distinct non-constant denominators (negative powers) in ``expr``."""
+    return len({a.base for a in atoms_of([expr], sp.Pow) if a.exp.is_negative and not a.base.is_number})
+
+
 def _readable_plain(expr: sp.Basic) -> sp.Basic:
     n_args = len({f.args[0] for f in atoms_of([expr], (sp.sin, sp.cos))})
     if n_args > TRIG_ARGS_LIMIT:
         return expr
     ops = _ops(expr)
     limit = {0: 4 * SIMPLIFY_LIMIT, 1: 4 * SIMPLIFY_LIMIT, 2: SIMPLIFY_LIMIT}.get(n_args, 150)
-    if ops > limit:
+    if ops > limit or (ops > SIMPLIFY_LIMIT and _denominators(expr) > DENOMINATORS_LIMIT):
         return expr
     try:
         e = trig_reduce(expr)

@@ -18,6 +18,8 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.plaintext import to_ascii
 from ..base.printing import latex
 from ..base.textsafe import markdown_text
+from ..derive.closed_forms import structured
+from ..io.results import answer_data
 from ..model.speeds import euler_norms
 from ..report.notation import latex_text
 from ..report.text import reaction_labels
@@ -55,8 +57,6 @@ def _definitions(s) -> list:
 
 
 def _regime(sol, r, shown, labels, eom) -> list:
-    from ..derive.solution import READABLE_DOF, LazyMap
-
     out = []
     if eom and not sol.coordinates:
         out.append(("Equations of motion", [("text", "none: no degree of freedom remains in this mode; the "
@@ -67,9 +67,8 @@ def _regime(sol, r, shown, labels, eom) -> list:
         entries += [("math", f"{latex(norm)} = 1") for _, norm in euler_norms(sol.system)]
         entries += [("math", f"{latex(e)} = 0") for e in r.eom]
         out.append(("Equations of motion", entries))
-        if len(r.eom) > READABLE_DOF and isinstance(r.accelerations, LazyMap) and not r.accelerations.computed:
-            acc = [("text", f"from M q̈ = f: with more than {READABLE_DOF} degrees of freedom their closed form is "
-                            "too large to read; the reactions are in terms of q̈")]
+        if structured(r):
+            acc = [("text", f"{r.form.reason}; the reactions are in terms of q̈")]
         else:
             acc = [("math", f"{latex(q.diff(t, 2))} = {latex(a)}") for q, a in r.accelerations.items()]
         out.append(("Accelerations", acc))
@@ -85,8 +84,6 @@ def _regime(sol, r, shown, labels, eom) -> list:
 
 
 def _answer(name, a, description, values) -> list:
-    from ..io.results import answer_data
-
     out = [("name", f"{name}" + (f" — {description}" if description else ""))]
     if isinstance(a, str):
         return out + [("text", f"not answered: {a}")]

@@ -42,6 +42,7 @@ from ..base.trigforms import compact
 from ..base.vectorops import dot, in_frame
 from ..model.profiles import arc_margins
 from ..model.speeds import quaternion_groups
+from . import closed_forms
 from .determinacy import _determinacy
 from .evaluation import reactions_at
 from .keyed import keyed, to_ours
@@ -271,6 +272,7 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
         how = "all unknowns from the scalar equations at once."
     else:
         M_raw, f_raw = _rows_to_mf(setup, raw_rows, reactions, {}, working)
+        choice = closed_forms.choose(M_raw, f_raw)
         regime_box: list = []
 
         def accelerations():
@@ -281,9 +283,9 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
         def solved_reactions():
             if not reactions:          # a free body: no reaction to solve for
                 return {str(r): sp.Integer(0) for r in missing}
-            # above READABLE_DOF the closed-form q̈ is too large to read (or to build quickly): the reactions
-            # are given in terms of q̈, which M q̈ = f gives at any state
-            acc = accel_map if len(accel_syms) <= READABLE_DOF else {q: q.diff(t, 2) for q in red.independent}
+            # a closed-form q̈ too large to read (or to build quickly): the reactions are given in terms of q̈,
+            # which M q̈ = f gives at any state
+            acc = accel_map if choice.closed else {q: q.diff(t, 2) for q in red.independent}
             rhs = -b - A.extract(list(range(A.rows)), list(range(len(accel_syms)))) * sp.Matrix(
                 [acc[q] for q in red.independent]) if accel_syms else -b      # 0 DOF: statics
             Al = A.extract(list(range(A.rows)), list(range(len(accel_syms), len(unknowns))))
@@ -297,15 +299,13 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
         accel_map, react_map = LazyMap(accelerations), LazyMap(solved_reactions)
         how = ("the accelerations from the reaction-free equations M q̈ = f; then the reactions from the "
                "balance equations with the accelerations known"
-               + (" (written in terms of q̈: with more than "
-                  f"{READABLE_DOF} degrees of freedom the closed-form q̈ is too large to read)."
-                  if len(accel_syms) > READABLE_DOF else "."))
+               + (f" (written in terms of q̈: {choice.reason})." if not choice.closed else "."))
     conditions = _regime_conditions(setup, choices, sign_map, react_map)
 
     @functools.cache
     def readable():
         repeatable()
-        return _readable_eom(setup, M_raw, f_raw)
+        return _readable_eom(setup, M_raw, f_raw, small=closed_forms.readable_size(M_raw, f_raw))
 
     def validity():
         repeatable()
@@ -316,10 +316,13 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
                     Deferred(lambda: readable()[1]), raw_mass_matrix=M_raw, raw_forcing=f_raw)
     if not working:
         regime_box.append(regime)
+    else:
+        choice = closed_forms.FormChoice(True, 0, len(accel_syms))
+    closed_forms.mark(regime, choice)
     if sign_map:
         trace.add("Solving", "Regime", [], " and ".join(str(c) for c in conditions))
     jointly = isinstance(accel_map, MappingProxyType) or accel_map.computed or (
-        reactions and len(accel_syms) <= READABLE_DOF and _validity_reads_reactions(setup))
+        reactions and choice.closed and _validity_reads_reactions(setup))
     if not jointly:
         trace.add("Solving", "Mass matrix and forcing",
                   LazyEquations(lambda: [(sp.Symbol("M"), regime.mass_matrix), (sp.Symbol("f"), regime.forcing)]),
@@ -405,11 +408,12 @@ def _rows_to_mf(setup, raw_rows, reactions, solved, working):
     return A, -b
 
 
-def _readable_eom(setup, M, f):
-    """M, f and the equations of motion simplified for reading (up to READABLE_DOF degrees of freedom)."""
+def _readable_eom(setup, M, f, small=True):
+    """M, f and the equations of motion simplified for reading (up to READABLE_DOF degrees of freedom,
+    and while M and f as derived are small enough to read: ``small``)."""
     kin, red = setup.kin, setup.reduction
     accels = [q.diff(t, 2) for q in red.independent]
-    small = len(accels) <= READABLE_DOF
+    small = small and len(accels) <= READABLE_DOF
     M = M.applyfunc(kin.simplify_expr) if small else M
     f = f.applyfunc(kin.simplify_expr) if small else f
     ref = {k: v for k, v in kin.reference_values().items() if isinstance(k, sp.Symbol)}

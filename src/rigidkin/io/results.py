@@ -20,7 +20,7 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ..base.units import from_si, si_unit
-from ..derive.solution import READABLE_DOF, LazyMap
+from ..derive.closed_forms import structured
 
 t = dynamicsymbols._t
 
@@ -37,12 +37,12 @@ def regime_data(regime) -> dict:
     """One regime: its conditions, validity, equations of motion, mass matrix and forcing (M q̈ = f),
     accelerations and reactions.
 
-    With more than ``READABLE_DOF`` degrees of freedom the accelerations are ``null`` unless they were
+    Where the closed form is too large to read (derive.closed_forms) the accelerations are ``null`` unless they were
     computed (M q̈ = f gives them; their closed form is too large to be data anyone reads), and the
     reactions are written in terms of q̈.
     """
     acc = regime.accelerations
-    large = regime.mass_matrix.rows > READABLE_DOF and isinstance(acc, LazyMap) and not acc.computed
+    large = structured(regime)
     return {
         "label": regime.describe(),
         "conditions": [_condition(c) for c in regime.conditions],

@@ -11,6 +11,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.printing import text
 from ..base.textsafe import terminal_safe
 from ..base.units import shown_value
+from ..derive.closed_forms import structured
 from ..derive.derivation import derivation_of
 from ..model.speeds import euler_norms
 
@@ -108,11 +109,9 @@ def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
         for i, e in enumerate(r.eom, start=1):
             out += [f"{_INDENT}({i})  {text(e)} = 0", ""]
         out.append("Accelerations")
-        from ..derive.solution import READABLE_DOF, LazyMap
-
-        if len(r.eom) > READABLE_DOF and isinstance(r.accelerations, LazyMap) and not r.accelerations.computed:
-            out.append(f"{_INDENT}from M q̈ = f (the equations above): with more than {READABLE_DOF} degrees of "
-                       "freedom their closed form is too large to read; the reactions below are in terms of q̈")
+        if structured(r):
+            out.append(f"{_INDENT}{r.form.reason}: M q̈ = f are the equations above; the reactions below are in "
+                       "terms of q̈")
         else:
             for q, a in r.accelerations.items():
                 out.append(f"{_INDENT}{text(q.diff(t, 2))} = {text(a)}")

@@ -148,7 +148,7 @@ class Sampler:
         """{plain q̈ symbol: value} at point ``i`` from the regime's M q̈ = f, solved numerically."""
         key = ("Mf", id(regime))
         if key not in self._funcs:
-            M, f = regime.mass_matrix, regime.forcing
+            M, f = regime.raw_mass_matrix, regime.raw_forcing       # as derived: equal, nothing to simplify
             plain, _ = algebra.plain_state(M.row_join(f))
             syms = sorted(plain.free_symbols, key=str)
             self._funcs[key] = (syms, sp.lambdify(syms, plain, modules=["numpy"]), regime)
