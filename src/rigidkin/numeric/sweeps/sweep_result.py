@@ -30,6 +30,7 @@ class SweepResult:
     result: batch.BatchResult
     backend: str
     record: dict | None = None             # the numeric record a repeat can be answered from (keep_record)
+    first: int = 0                         # the number of the first run (a chunk of a streamed sweep)
 
     def __len__(self) -> int:
         return len(self.result)
@@ -54,7 +55,7 @@ class SweepResult:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The table: one column per input, parameter, event time and state, final time and state, status."""
-        cols: dict[str, np.ndarray] = {"run": np.arange(len(self))}
+        cols: dict[str, np.ndarray] = {"run": np.arange(self.first, self.first + len(self))}
         for j, name in enumerate(self.layout.parameters):
             cols[name] = self.params[:, j]
         for name, values in self.inputs.items():

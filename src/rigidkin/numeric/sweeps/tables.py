@@ -156,10 +156,12 @@ def _columns(columns: Mapping[str, np.ndarray]) -> tuple[list[str], list[np.ndar
     return names, arrays, rows.pop() if rows else 0
 
 
-def csv_text_blocks(columns: Mapping[str, np.ndarray], block_rows: int = BLOCK_ROWS):
-    """The CSV text of a table, header first, in blocks of ``block_rows`` rows (lines end in CRLF)."""
+def csv_text_blocks(columns: Mapping[str, np.ndarray], block_rows: int = BLOCK_ROWS, header: bool = True):
+    """The CSV text of a table, header first (unless not ``header``: a later chunk of a streamed table), in
+    blocks of ``block_rows`` rows (lines end in CRLF)."""
     names, arrays, rows = _columns(columns)
-    yield ",".join(_text_cell(n) for n in names) + "\r\n"
+    if header:
+        yield ",".join(_text_cell(n) for n in names) + "\r\n"
     for start in range(0, rows, block_rows):
         stop = min(rows, start + block_rows)
         floats = _FloatCells(stop - start)
