@@ -5,8 +5,11 @@ Every combination of the ``--param`` axes (parameters, or initial values such as
 compiled code until ``--stop-at`` (a reaction reaching zero, ``N_A``, or a state value,
 ``theta=1.2``; by default the first unilateral contact that stops pushing) or ``--t-end``.  The table
 has one row per run: its parameters, each event's time and state, its final state; it is written as
-CSV, or as Parquet when ``-o`` names a ``.parquet`` file (pyarrow).
-``--workers N`` runs on a local Dask cluster, ``--scheduler ADDRESS`` on a remote one.
+CSV, or as Parquet when ``-o`` names a ``.parquet`` file (pyarrow), chunk by chunk (memory bounded by the chunk:
+:mod:`rigidkin.numeric.sweeps.stream`); the terminal shows how the runs ended and the range and percentiles of
+every event's time; ``--plot`` draws an event quantity against a swept parameter, or a map over two.
+``--workers N`` runs on a local Dask cluster, ``--scheduler ADDRESS`` on a remote one; ``--backend gpu`` on an
+NVIDIA GPU (CuPy).
 """
 
 from __future__ import annotations
