@@ -29,7 +29,7 @@ def main() -> None:
     ap.add_argument("--c-runs", type=int, default=100_000)
     args = ap.parse_args()
 
-    import rigidkin as rk
+    from rigidkin import examples
     from rigidkin.numeric.sweeps import gpu
     from rigidkin.numeric.sweeps.sweep import Prepared
 
@@ -39,7 +39,7 @@ def main() -> None:
     import cupy
 
     card = cupy.cuda.runtime.getDeviceProperties(0)["name"].decode()
-    ladder = rk.examples.build("ladder")
+    ladder = examples.build("ladder")
     vary = {"theta": (0.05, 1.3, args.runs)}
     g = Prepared(ladder, vary, stop_at="N_A", backend="gpu", stream=args.runs)
     _, P, Y = g.plan(0, args.runs)

@@ -43,10 +43,10 @@ def main() -> None:
     args = ap.parse_args()
     counts = sorted({t for t in (1, 2, 4, 8, 16) if t <= args.max_threads} | {args.max_threads})
 
-    import rigidkin as rk
+    from rigidkin import examples
     from rigidkin.numeric.sweeps.sweep import Prepared
 
-    prep = Prepared(rk.examples.build("ladder"), {"theta": (0.05, 1.3, args.runs)}, stop_at="N_A", stream=args.runs)
+    prep = Prepared(examples.build("ladder"), {"theta": (0.05, 1.3, args.runs)}, stop_at="N_A", stream=args.runs)
     prep.part(0, 10)                                          # compile once
     rows, base = [], None
     with tempfile.TemporaryDirectory() as tmp:
