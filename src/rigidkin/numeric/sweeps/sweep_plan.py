@@ -17,6 +17,8 @@ from .exprtree import evaluate
 
 #: Chunks a streamed sweep holds at once: one being integrated, one waiting for the writer, one being written.
 IN_FLIGHT = 3
+#: The most runs one streamed sweep makes (a table of about 25 GB as CSV for the ladder).
+MAX_STREAMED = 100_000_000
 
 
 def axis(spec) -> np.ndarray:
@@ -55,6 +57,9 @@ def check_runs(lengths: list[int], n: int, n_p: int, events: int = 4, grid: bool
     """
 
     runs = (math.prod(lengths) if grid else max(lengths)) if lengths else 1
+    if chunk is not None and runs > MAX_STREAMED:
+        raise InputError(f"a sweep of {runs:,} runs is more than one command runs ({MAX_STREAMED:,}).", where="sweep",
+                         hint="Use fewer values per axis (or fewer axes), or split the sweep into several.")
     per_run = 3 * n_p + 2 * len(lengths) + 6 * 2 * n + 2 * events * (2 * n + 1) + 8
     held = runs if chunk is None else min(runs, IN_FLIGHT * int(chunk))
     estimate = sweep_bytes(held, per_run) + (0 if chunk is None else 8 * sum(lengths))
