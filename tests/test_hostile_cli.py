@@ -193,8 +193,9 @@ CASES = [
     ("timeout-report", ["report", P, "-o", "{d}/r.html", "--timeout", "1e99"], 2, "--timeout"),
     ("report-simulate-nan", ["report", P, "-o", "{d}/r.html", "--simulate", "nan"], 2, "--simulate"),
     # sweeps bounded by their memory before anything is allocated
-    ("sweep-3000x3000", [*SWEEP, "--param", "theta=0.1:1:3000", "l=0.5:2:3000"], 2, "9,000,000 runs"),
-    ("sweep-1e7x1e7", [*SWEEP, "--param", "theta=0.1:1:10000000", "l=0.5:2:10000000"], 2, "of memory"),
+    ("sweep-20000x20000", [*SWEEP, "--param", "theta=0.1:1:20000", "l=0.5:2:20000"], 2, "400,000,000 runs"),
+    ("sweep-1e7x1e7", [*SWEEP, "--param", "theta=0.1:1:10000000", "l=0.5:2:10000000"], 2,
+     "more than one command runs"),
     ("sweep-count-1e8", [*SWEEP, "--param", "theta=0.1:1:100000000"], 2, "between 1 and 10^7"),
     ("sweep-rtol-negative", [*SWEEP, "--param", "theta=0:1:3", "--rtol", "-1"], 2, "--rtol"),
     ("sweep-t-end-nan", [*SWEEP, "--param", "theta=0:1:3", "--t-end", "nan"], 2, "--t-end"),

@@ -5,8 +5,11 @@ Every combination of the ``--param`` axes (parameters, or initial values such as
 compiled code until ``--stop-at`` (a reaction reaching zero, ``N_A``, or a state value,
 ``theta=1.2``; by default the first unilateral contact that stops pushing) or ``--t-end``.  The table
 has one row per run: its parameters, each event's time and state, its final state; it is written as
-CSV, or as Parquet when ``-o`` names a ``.parquet`` file (pyarrow).
-``--workers N`` runs on a local Dask cluster, ``--scheduler ADDRESS`` on a remote one.
+CSV, or as Parquet when ``-o`` names a ``.parquet`` file (pyarrow), chunk by chunk (memory bounded by the chunk:
+:mod:`rigidkin.numeric.sweeps.stream`); the terminal shows how the runs ended and the range and percentiles of
+every event's time; ``--plot`` draws an event quantity against a swept parameter, or a map over two.
+``--workers N`` runs on a local Dask cluster, ``--scheduler ADDRESS`` on a remote one; ``--backend gpu`` on an
+NVIDIA GPU (CuPy).
 """
 
 from __future__ import annotations
@@ -50,7 +53,13 @@ def register(sub) -> None:
     p.add_argument("-o", "--output", required=True, metavar="TABLE",
                    help="the table of runs: CSV, or Parquet for a .parquet or .pq file (needs pyarrow: "
                         "pip install 'rigidkin[parquet]')")
-    p.add_argument("--plot", metavar="PNG", help="a figure of the first event's time against the first axis")
+    p.add_argument("--plot", metavar="PNG", help="a figure of an event quantity (--plot-y) against the first swept "
+                                                  "parameter, or a map over the first two when two are swept")
+    p.add_argument("--plot-x", nargs="+", default=None, metavar="AXIS",
+                   help="the swept parameter(s) of the figure: one (a curve) or two (a map)")
+    p.add_argument("--plot-y", default=None, metavar="COLUMN",
+                   help="the quantity drawn: a column of the table (\"N_A: theta\"), or an event's name for its time "
+                        "(default: the first event's time)")
     p.add_argument("--rtol", type=tolerance, default=1e-10, help="relative tolerance (default 1e-10)")
     p.add_argument("--atol", type=tolerance, default=1e-12, help="absolute tolerance (default 1e-12)")
     p.add_argument("--threads", type=threads, default=None, metavar="N", help="local threads (default: all cores)")
@@ -58,8 +67,9 @@ def register(sub) -> None:
                    help="run on a local Dask cluster of N worker processes")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on the Dask cluster at ADDRESS (tcp://host:8786)")
     p.add_argument("--chunk", type=chunk, default=None, metavar="RUNS", help="runs per task (default: automatic)")
-    p.add_argument("--backend", choices=("auto", "c", "numpy"), default="auto",
-                   help="generated code: C (compiled here) or numpy (default: C when a compiler is present)")
+    p.add_argument("--backend", choices=("auto", "c", "numpy", "gpu"), default="auto",
+                   help="generated code: C (compiled here), numpy, or gpu (the same C, one run per GPU thread; needs "
+                        "CuPy and an NVIDIA GPU) (default: the GPU when one is present, else C when a compiler is)")
     add_no_cache(p)
     add_timeout(p)
     p.set_defaults(func=run)
@@ -108,6 +118,9 @@ def parse_axis(text: str, where: str, unit: str | None = None):
 
 
 def run(args) -> int:
+    from ..numeric.sweeps.gpu import resolve_backend
+    from ..numeric.sweeps.stream import CHUNK, write_sweep
+    from ..numeric.sweeps.summary import Summary
     from ..numeric.sweeps.tables import require_parquet, table_format
 
     check_target(args.output, "the sweep table")
@@ -123,10 +136,13 @@ def run(args) -> int:
         parse_axis(v, f"--param {name}")
     sets, initial, mode = _pairs(args.set, "--set"), _pairs(args.initial, "--initial"), _pairs(args.mode, "--mode")
     scheduler = args.scheduler or ("local" if args.workers else None)
+    backend = resolve_backend(args.backend) if scheduler is None else args.backend
     start = time.perf_counter()
-    res = _from_record(args, raw, sets, initial, mode) if scheduler is None and args.backend != "numpy" else None
-    if res is None:
-        from ..numeric.sweeps.sweep import check_size, sweep
+    source = _from_record(args, raw, sets, initial, mode, backend, CHUNK) \
+        if scheduler is None and backend != "numpy" else None
+    derived = None
+    if source is None:
+        from ..numeric.sweeps.sweep import Prepared
 
         derived = guarded(args, open_problem, args)
         system = derived.system
@@ -135,34 +151,38 @@ def run(args) -> int:
         initial = checked_values(initial, units, "--initial")
         stop_at = checked_events(args.stop_at, units, "--stop-at")
         record = checked_events(args.record, units, "--record")
-        runs = check_size(system, vary, events=len(args.stop_at) + len(args.record) + 2 * len(system.constraints)
-                          + 2)
-        set_step(f"Sweeping {runs:,} runs")
-        progress = _Progress(sys.stderr.isatty())
-        start = time.perf_counter()
-        try:
-            res = sweep(system, vary, params=sets, initial=initial, t_end=args.t_end, stop_at=stop_at or None,
-                        record=record, mode=mode, rtol=args.rtol, atol=args.atol,
-                        workers=args.workers if scheduler else args.threads, scheduler=scheduler, chunk=args.chunk,
-                        backend=args.backend, progress=progress, keep_record=not args.no_cache)
-        finally:
-            progress.close()
+        source = Prepared(system, vary, params=sets, initial=initial, t_end=args.t_end, stop_at=stop_at or None,
+                          record=record, mode=mode, rtol=args.rtol, atol=args.atol,
+                          workers=args.workers if scheduler else args.threads, scheduler=scheduler, chunk=args.chunk,
+                          backend=backend, keep_record=not args.no_cache, stream=CHUNK)
+    else:
+        vary = source.vary
+    set_step(f"Sweeping {source.runs:,} runs")
+    x_axes, y_column = _plot_columns(args, list(raw)) if args.plot else ((), None)
+    summary = Summary(source.runs, keep=(*x_axes, y_column) if args.plot else ())
+    progress = _Progress(sys.stderr.isatty() and source.runs > CHUNK)
+    start = time.perf_counter() if derived is not None else start
+    try:
+        summary, first = write_sweep(source, args.output, progress=progress, summary=summary)
+    finally:
+        progress.close()
+    if derived is not None:
         derived.save()
-        if res.record is not None:
-            _keep_record(args, mode, {**res.record, "units": units})
+        if first.record is not None:
+            _keep_record(args, mode, {**first.record, "units": units})
     elapsed = time.perf_counter() - start
-    set_step("Writing the table")
-    res.write(args.output)
     say = _safe_print(terminal_safe)
-    counts = _status_counts(res.status)
-    say(f"{len(res)} runs of {res.system_name} ({res.backend}) in {elapsed:.3g} s: "
+    counts = summary.status_counts()
+    say(f"{source.runs} runs of {first.system_name} ({first.backend}) in {elapsed:.3g} s: "
         + ", ".join(f"{v} {k}" for k, v in counts.items()))
-    for k, name in enumerate(res.result.event_names):
-        hit = int((~_isnan(res.result.event_t[:, k])).sum())
-        say(f"  event {name}: {hit} of {len(res)} runs")
+    for line in summary.lines()[1:]:
+        say(line)
     say(f"Wrote the table to {args.output}")
     if args.plot:
-        res.plot(args.plot)
+        from ..numeric.sweeps.sweep_plot import plot_sweep
+
+        plot_sweep(args.plot, first.system_name, summary, x_axes, y_column,
+                   {k: len(v) for k, v in _axis_values(vary).items()} if summary.stride == 1 else None)
         say(f"Wrote the figure to {args.plot}")
     bad = [k for k, v in counts.items() if k not in ("reached the end time", "terminal event")]
     if bad:
@@ -170,15 +190,35 @@ def run(args) -> int:
     return 0
 
 
+def _axis_values(vary) -> dict:
+    from ..numeric.sweeps.sweep_plan import axes_of
+
+    return axes_of(vary)
+
+
+def _plot_columns(args, axes: list[str]) -> tuple[tuple[str, ...], str | None]:
+    """The figure's swept parameters (one: a curve; two: a map) and its quantity (a table column; None: the
+    first event's time, named once the events are known)."""
+    x = tuple(args.plot_x or axes[:2] or ["run"])
+    if len(x) > 2:
+        raise InputError("a figure draws against one swept parameter, or maps over two.", where="--plot-x")
+    for name in x:
+        if name not in axes and name != "run":
+            raise InputError(f"'{name}' is not a swept parameter of this sweep.", where="--plot-x",
+                             hint=f"Swept: {', '.join(axes) or 'none'}.")
+    y = args.plot_y
+    if y is not None and ":" not in y and y not in ("run", "status"):
+        y = f"{y}: t"                   # an event's name: its time
+    return x, y
 def _record_options(args, mode) -> tuple:
     from ..numeric.sweeps.sweep_record import options_key
 
     return options_key(mode, args.stop_at, args.record, args.backend)
 
 
-def _from_record(args, vary, sets, initial, mode):
+def _from_record(args, vary, sets, initial, mode, backend="c", stream=None):
     """The sweep from its numeric record when a previous sweep of this problem kept one (no sympy imported,
-    nothing derived); None: take the full route."""
+    nothing derived), ready to stream ``stream`` runs at a time; None: take the full route."""
     from ..numeric.sweeps.sweep_record import SUFFIX, run
 
     rec = read_kept(source_of(args), _record_options(args, mode), SUFFIX, use=not args.no_cache)
@@ -187,7 +227,11 @@ def _from_record(args, vary, sets, initial, mode):
         return None                              # no record, or one kept without the units: the full route
     vary = parse_axes(vary, units)
     initial = checked_values(initial, units, "--initial")
-    return run(rec, vary, sets, initial, args.t_end, args.rtol, args.atol, args.threads, args.chunk)
+    source = run(rec, vary, sets, initial, args.t_end, args.rtol, args.atol, args.threads, args.chunk, stream,
+                 backend)
+    if source is not None:
+        source.vary = vary
+    return source
 
 
 def _keep_record(args, mode, record: dict) -> None:
@@ -196,26 +240,10 @@ def _keep_record(args, mode, record: dict) -> None:
     write_kept(source_of(args), _record_options(args, mode), SUFFIX, record, use=not args.no_cache)
 
 
-def _status_counts(status) -> dict[str, int]:
-    """How many runs ended in each way, in the order of the status codes."""
-    import numpy as np
-
-    from ..numeric.compiled.batch import STATUS
-
-    codes, counts = np.unique(np.asarray(status, dtype=int), return_counts=True)
-    return {STATUS.get(c, f"status {c}"): n for c, n in zip(codes.tolist(), counts.tolist())}
-
-
 def _safe_print(safe):
     import builtins
 
     return lambda *a, **kw: builtins.print(*(safe(x) for x in a), **kw)
-
-
-def _isnan(a):
-    import numpy as np
-
-    return np.isnan(a)
 
 
 class _Progress:

@@ -255,6 +255,7 @@ static int rk_run(const double *y0, const double *p, double t0, double t1, doubl
     rk_state S;
     double g[RK_NO], g_new[RK_NO], roots[RK_NO > 0 ? RK_NO : 1];
     int status = 0;
+    double h_abs = 0.0;               /* declared before the first goto: C++ (a GPU's compiler) forbids the jump */
     memset(&S, 0, sizeof(S));
     S.p = p; S.rtol = rtol; S.atol = atol; S.max_step = max_step; S.t = t0;
     memcpy(S.y, y0, sizeof(S.y));
@@ -263,7 +264,7 @@ static int rk_run(const double *y0, const double *p, double t0, double t1, doubl
     S.nfev = 1;
     for (int i = 0; i < RK_NY; i++) if (!isfinite(S.f[i]) || !isfinite(S.y[i])) { status = 2; goto done; }
     if (ne && rk_eval_out(t0, S.y, p, g)) { status = 3; goto done; }
-    double h_abs = rk_first_step(&S, t0, t1);
+    h_abs = rk_first_step(&S, t0, t1);
     for (long step = 0; ; step++) {
         if (S.t - t1 >= 0) { status = 0; break; }
         if (step >= max_steps) { status = 4; break; }
@@ -381,6 +382,8 @@ def integrate(model, y0: np.ndarray, params: np.ndarray, t_span, events: Sequenc
     n = y0.shape[0]
     P = np.ascontiguousarray(np.broadcast_to(np.asarray(params, dtype=float), (n, model.kernel.np_)))
     t0, t1 = (float(v) for v in t_span)
+    if hasattr(model, "integrate_batch"):           # another device (the GPU backend) integrates the runs itself
+        return model.integrate_batch(y0, P, t0, t1, events, rtol, atol, max_step, max_steps)
     if model.lib is None:
         return _integrate_scipy(model, y0, P, (t0, t1), events, rtol, atol, max_step)
     workers = workers or default_workers()

@@ -32,7 +32,8 @@ from ..compiled.kernel import Kernel
 from ..state import StateLayout, parameter_vector, quantity
 from .batch_dask import integrate_dask
 from .exprtree import NotEncodable, encode
-from .sweep_plan import axis, axis_length, check_runs, complete, declared_state, runs_grid  # noqa: F401  (public here)
+from .gpu import GpuModel, resolve_backend
+from .sweep_plan import axes_of, axis, axis_length, check_runs, complete, declared_state, runs_grid, sweep_runs  # noqa: F401  (public here)
 from .sweep_record import make
 from .sweep_result import SweepResult, status_text  # noqa: F401  (public through here)
 from .sweep_start import assemble_runs, start_gaps
@@ -84,14 +85,14 @@ def _mode_events(system, mode) -> list[str]:
     return [str(r) for r, _ in setup_mode(system, mode).unilateral]
 
 
-def check_size(system, vary: Mapping | None, grid: bool = True, events: int = 4) -> int:
+def check_size(system, vary: Mapping | None, grid: bool = True, events: int = 4, chunk: int | None = None) -> int:
     """The number of runs of a sweep, refused (InputError) when its table would not fit in memory.
 
     Every run keeps its parameters, inputs, initial and final states, and each event's time and
     state (``events``: how many events, estimated); see :data:`rigidkin.base.limits.MEMORY_LIMIT`.
     """
     lengths = [axis_length(spec) for spec in (vary or {}).values()]
-    return check_runs(lengths, len(system.coordinate_info), len(system.parameter_info), events, grid)
+    return check_runs(lengths, len(system.coordinate_info), len(system.parameter_info), events, grid, chunk)
 
 
 def plan(system, vary: Mapping | None = None, params: Mapping | None = None, initial: Mapping | None = None,
@@ -211,6 +212,9 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
     recorded without stopping.  ``scheduler``: a Dask scheduler address, a ``distributed.Client``,
     or ``"local"`` (a LocalCluster of ``workers`` processes).  ``keep_record``: make the sweep's numeric
     record (``result.record``, :mod:`rigidkin.numeric.sweeps.sweep_record`) where one can answer a repeat.
+    ``backend``: ``"c"``, ``"numpy"``, ``"gpu"`` (:mod:`rigidkin.numeric.sweeps.gpu`) or ``"auto"`` (the GPU
+    when one is present, else C when a compiler is).  The whole sweep is held in memory; a sweep of any
+    size streams to a table with :func:`rigidkin.numeric.sweeps.stream.write_sweep` over :class:`Prepared`.
 
     >>> import numpy as np
     >>> from rigidkin import examples
@@ -219,31 +223,78 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
     >>> [f"{v:.9f}" for v in np.cos(res.event_state("N_A", "theta")) / np.cos([0.2, 0.4, 0.6])]   # 2/3
     ['0.666666667', '0.666666667', '0.666666667']
     """
-    mode = dict(mode or {})
-    try:
-        t_end = float(t_end)
-    except (TypeError, ValueError):
-        raise InputError(f"the end time must be a number, not {t_end!r}.", where="sweep") from None
-    if not np.isfinite(t_end) or t_end <= 0:
-        raise InputError(f"the end time must be a positive finite number, not {t_end}.", where="sweep")
-    for name, tol in (("rtol", rtol), ("atol", atol)):
-        if not isinstance(tol, (int, float)) or not math.isfinite(tol) or not 0 < tol < 1:
-            raise InputError(f"the tolerance {name} = {tol!r} must be a positive number below 1.", where="sweep",
-                             hint="For example rtol=1e-10, atol=1e-12.")
-    layout = StateLayout.of(system)
-    stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or [])
-    inputs, P, Y = plan(system, vary, params, initial, mode, grid,
-                        events=len(stops) + len(record) + 2 * len(system.constraints) + 2)
-    n_regimes = None
-    if regime is not None or form == "implicit":
-        which = np.full(len(Y), regime or 0)
-    else:
-        n_regimes = len(system.solve(mode=mode).regimes)
-        which = np.zeros(len(Y), dtype=int) if n_regimes == 1 else _assign_regimes(system, mode, layout, Y, P)
-    parts, used, names, kept = {}, "c", None, None
-    groups = [int(r) for r in np.unique(which) if r >= 0] or [0]
-    done = 0
-    for r in groups:
+    prep = Prepared(system, vary, params, initial, t_end=t_end, stop_at=stop_at, record=record, mode=mode,
+                    regime=regime, grid=grid, rtol=rtol, atol=atol, max_step=max_step, workers=workers,
+                    scheduler=scheduler, chunk=chunk, form=form, backend=backend, keep_record=keep_record,
+                    stream=None)
+    return prep.part(0, prep.runs, progress)
+
+
+class Prepared:
+    """A sweep made ready to run in parts: its axes, base values, constraints, kernels and events, once.
+
+    ``part(first, stop)`` integrates runs ``first`` … ``stop - 1`` (in the order of the whole grid) and gives
+    their :class:`SweepResult` (its ``run`` column counts from ``first``).  ``stream``: the runs held at once
+    when the sweep is written chunk by chunk (the memory check counts those, not the whole sweep); None: the
+    whole sweep is held (checked whole).
+    """
+
+    def __init__(self, system, vary=None, params=None, initial=None, *, t_end=10.0, stop_at=None, record=(),
+                 mode=None, regime=None, grid=True, rtol=1e-10, atol=1e-12, max_step=np.inf, workers=None,
+                 scheduler=None, chunk=None, form="auto", backend="auto", keep_record=False, stream=None):
+        mode = dict(mode or {})
+        try:
+            t_end = float(t_end)
+        except (TypeError, ValueError):
+            raise InputError(f"the end time must be a number, not {t_end!r}.", where="sweep") from None
+        if not np.isfinite(t_end) or t_end <= 0:
+            raise InputError(f"the end time must be a positive finite number, not {t_end}.", where="sweep")
+        for name, tol in (("rtol", rtol), ("atol", atol)):
+            if not isinstance(tol, (int, float)) or not math.isfinite(tol) or not 0 < tol < 1:
+                raise InputError(f"the tolerance {name} = {tol!r} must be a positive number below 1.", where="sweep",
+                                 hint="For example rtol=1e-10, atol=1e-12.")
+        self.system, self.mode, self.t_end, self.stop_at, self.record = system, mode, t_end, stop_at, record
+        self.regime, self.form, self.rtol, self.atol, self.max_step = regime, form, rtol, atol, max_step
+        self.workers, self.scheduler, self.chunk, self.keep_record = workers, scheduler, chunk, keep_record
+        self.backend = resolve_backend(backend) if scheduler is None else backend
+        self.layout = layout = StateLayout.of(system)
+        stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or [])
+        self.runs = check_size(system, vary, grid, len(stops) + len(record) + 2 * len(system.constraints) + 2,
+                               chunk=stream)
+        self.grid, self.vary = grid, vary
+        self.base_p = parameter_vector(system, layout, params)
+        self.y_base = declared_state(system, layout.n)
+        self.given: set[int] = set()
+        for key, value in (initial or {}).items():
+            i = layout.index(str(key))
+            self.y_base[i] = quantity(value, None, f"initial {key}")
+            self.given.add(i)
+        self.axes = axes_of(vary)
+        sweep_runs(self.axes, grid)                 # zipped axes of unequal lengths: said before anything runs
+        for name in self.axes:
+            if name not in layout.parameters and name not in layout.labels:
+                raise _unknown(system, layout, name)
+        self.rel = relations(system, mode, layout)
+        self.n_regimes = None if (regime is not None or form == "implicit") else len(system.solve(mode=mode).regimes)
+        self.models: dict = {}
+        self.names = None
+        self.record_kept = None
+
+    def plan(self, first: int, stop: int):
+        """(inputs, P, Y) of runs ``first`` … ``stop - 1``: the grid's values, each state completed."""
+        layout, given = self.layout, set(self.given)
+        inputs, P, Y = runs_grid(self.vary, self.base_p, self.y_base, layout.parameters, layout.labels, given,
+                                 self.grid, functools.partial(_unknown, self.system, layout), (first, stop), self.axes)
+        if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
+            raise InputError("the sweep's values are not all finite numbers.", where="sweep")
+        complete(Y, P, self.rel, given, functools.partial(_vector_eval, layout.arguments()))
+        return inputs, P, Y
+
+    def _model(self, r: int):
+        """Regime ``r``'s kernel (with the sweep's events as outputs), its events, and its compiled model."""
+        if r in self.models:
+            return self.models[r]
+        system, mode, layout, form, stop_at = self.system, self.mode, self.layout, self.form, self.stop_at
         k = kernel(system, mode, r, form)
         stops = [stop_at] if isinstance(stop_at, str) else list(stop_at or [])
         aliases = event_aliases(system, mode)
@@ -254,34 +305,61 @@ def sweep(system, vary: Mapping | None = None, params: Mapping | None = None, in
             if form != "implicit":
                 events += _condition_events(system, mode, r, layout)
         events += [stop_event(layout, k, s, False, aliases) for s in dict.fromkeys(
-            aliases.get(str(s).strip(), s) for s in record) if s not in stops]
+            aliases.get(str(s).strip(), s) for s in self.record) if s not in stops]
         extra = [e for e in events if e.expr is not None]
         if extra:
             k = k.with_outputs([e.name for e in extra], [e.expr for e in extra])
         bev = [batch.Event(e.name, k.output_index(e.name), e.direction, e.terminal) for e in events]
-        names = names or tuple(e.name for e in bev)
-        idx = np.flatnonzero(which == r)
-        if not len(idx):
-            continue
-        sub_progress = None if progress is None else (lambda d, _t, base=done: progress(base + d, len(Y)))
-        if scheduler is None:
-            model = compile_kernel(k, backend)
-            res = batch.integrate(model, Y[idx], P[idx], (0.0, t_end), bev, rtol, atol, max_step, workers=workers,
-                                  chunk=chunk)
-            if sub_progress:
-                sub_progress(len(idx), len(idx))
-            used = model.backend
-            if keep_record and n_regimes == 1 and used == "c":
-                kept = _record(system, mode, layout, k, bev)
+        model = None
+        if self.scheduler is None:
+            model = compile_kernel(k, "c" if self.backend == "gpu" else self.backend)
+            if self.backend == "gpu":
+                model = GpuModel(c_source(k) + INTEGRATOR_C, k.np_)
+        self.models[r] = (k, bev, model)
+        return self.models[r]
+
+    def part(self, first: int, stop: int, progress: Callable[[int, int], None] | None = None) -> SweepResult:
+        """Runs ``first`` … ``stop - 1`` integrated: their :class:`SweepResult`."""
+        inputs, P, Y = self.plan(first, stop)
+        system, mode, layout = self.system, self.mode, self.layout
+        if self.n_regimes is None:
+            which = np.full(len(Y), self.regime or 0)
         else:
-            res = integrate_dask(k, Y[idx], P[idx], (0.0, t_end), bev, rtol, atol, max_step, scheduler=scheduler,
-                                 workers=workers, chunk=chunk, progress=sub_progress)
-            used = "c (dask)"
-        done += len(idx)
-        parts[r] = (idx, res)
-    out = SweepResult(system.name, layout, inputs, P, Y, _merge(parts, Y, names or ()), used)
-    out.record = kept
-    return out
+            which = np.zeros(len(Y), dtype=int) if self.n_regimes == 1 else _assign_regimes(system, mode, layout, Y, P)
+        parts, used = {}, "c"
+        groups = [int(r) for r in np.unique(which) if r >= 0] or [0]
+        done = 0
+        for r in groups:
+            k, bev, model = self._model(r)
+            self.names = self.names or tuple(e.name for e in bev)
+            idx = np.flatnonzero(which == r)
+            if not len(idx):
+                continue
+            sub_progress = None if progress is None else (lambda d, _t, base=done: progress(base + d, len(Y)))
+            if self.scheduler is None:
+                res = batch.integrate(model, Y[idx], P[idx], (0.0, self.t_end), bev, self.rtol, self.atol,
+                                      self.max_step, workers=self.workers, chunk=self.chunk)
+                if sub_progress:
+                    sub_progress(len(idx), len(idx))
+                used = model.backend
+                if self.keep_record and self.n_regimes == 1 and used == "c" and self.record_kept is None:
+                    self.record_kept = _record(system, mode, layout, k, bev)
+            else:
+                res = integrate_dask(k, Y[idx], P[idx], (0.0, self.t_end), bev, self.rtol, self.atol, self.max_step,
+                                     scheduler=self.scheduler, workers=self.workers, chunk=self.chunk,
+                                     progress=sub_progress)
+                used = "c (dask)"
+            done += len(idx)
+            parts[r] = (idx, res)
+        out = SweepResult(system.name, layout, inputs, P, Y, _merge(parts, Y, self.names or ()), used, first=first)
+        out.record = self.record_kept
+        return out
+
+
+def _unknown(system, layout, name):
+    return InputError(f"'{name}' is neither a parameter nor a coordinate or rate of {system.name}.",
+                      where="sweep", hint=f"Parameters: {', '.join(layout.parameters)}; state: "
+                                          f"{', '.join(layout.labels)}.")
 
 
 def _record(system, mode, layout: StateLayout, k: Kernel, events) -> dict | None:

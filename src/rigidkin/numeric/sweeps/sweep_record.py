@@ -22,10 +22,12 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from ...base.errors import InputError
 from ..compiled import batch
 from ..compiled.cache import CacheError, build
 from . import exprtree
-from .sweep_plan import axis_length, check_runs, complete, declared_state, runs_grid
+from .gpu import GpuModel
+from .sweep_plan import axes_of, axis_length, check_runs, complete, declared_state, runs_grid
 from .sweep_result import SweepResult
 
 VERSION = 2                # 2: the start gaps a record checks before it answers
@@ -94,6 +96,13 @@ def plain_number(text) -> float | None:
 
 def plan(rec: dict, vary: dict, params: dict, initial: dict):
     """(inputs, P, Y) as :func:`rigidkin.numeric.sweeps.sweep.plan` makes them, or None (take the full route)."""
+    planner = planner_of(rec, vary, params, initial)
+    return None if planner is None else planner(0, planner.runs)
+
+
+def planner_of(rec: dict, vary: dict, params: dict, initial: dict, stream: int | None = None):
+    """The :class:`Planner` of the sweep's runs, sized for a sweep held whole or (``stream``) streamed that many
+    runs at a time; None: take the full route."""
 
     labels, names = rec["labels"], rec["parameters"]
     base_p = list(rec["base_p"])
@@ -115,20 +124,45 @@ def plan(rec: dict, vary: dict, params: dict, initial: dict):
     if any(k not in names and k not in labels for k in vary):
         return None
     n_c, n_p, n_con = rec["counts"]
-    check_runs([axis_length(spec) for spec in vary.values()], n_c, n_p, len(rec["events"]) + 2 * n_con + 2)
-    inputs, P, Y = runs_grid(vary, base_p, Y0, names, labels, given)
-    if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
-        return None
-    rel = ([(i, tr) for i, tr in rec["coordinates"]], [(i, tr) for i, tr in rec["rates"]])
-    complete(Y, P, rel, given)
-    if not np.all(np.isfinite(Y)):
-        return None
-    cols = [np.zeros(len(Y)), *Y.T, *P.T]
-    tol = 1e-9 * np.maximum(1.0, np.max(np.abs(Y[:, :rec["n"]]), axis=1)) if rec["n"] else 1e-9
-    for tree in rec["starts"]:        # a start off its constraints: the full route assembles it or says why
-        if np.any(~(np.abs(exprtree.evaluate(tree, cols, len(Y))) <= tol)):
+    runs = check_runs([axis_length(spec) for spec in vary.values()], n_c, n_p, len(rec["events"]) + 2 * n_con + 2,
+                      chunk=stream)
+    planner = Planner(rec, axes_of(vary), base_p, Y0, given, runs)
+    step = int(stream or runs) or 1
+    for first in range(0, runs, step):      # a start off its constraints: the full route assembles it or says why
+        if not planner.on_constraints(first, min(runs, first + step)):
             return None
-    return inputs, P, Y
+    return planner
+
+
+class Planner:
+    """The runs of a sweep from its record, any chunk of them: (inputs, P, Y) of runs ``first`` … ``stop - 1``,
+    or None where a value is not finite (take the full route, which says so)."""
+
+    def __init__(self, rec, axes, base_p, y0, given, runs):
+        self.rec, self.axes, self.base_p, self.y0, self.given, self.runs = rec, axes, base_p, y0, given, runs
+
+    def __call__(self, first: int, stop: int):
+        rec, given = self.rec, set(self.given)
+        inputs, P, Y = runs_grid(None, self.base_p, self.y0, rec["parameters"], rec["labels"], given,
+                                 rows=(first, stop), axes=self.axes)
+        if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
+            return None
+        rel = ([(i, tr) for i, tr in rec["coordinates"]], [(i, tr) for i, tr in rec["rates"]])
+        complete(Y, P, rel, given)
+        if not np.all(np.isfinite(Y)):
+            return None
+        return inputs, P, Y
+
+    def on_constraints(self, first: int, stop: int) -> bool:
+        """Whether every start of runs ``first`` … ``stop - 1`` lies on the record's position constraints."""
+        planned = self(first, stop)
+        if planned is None:
+            return True             # not finite: said when the chunk is run
+        _, P, Y = planned
+        cols = [np.zeros(len(Y)), *Y.T, *P.T]
+        n = self.rec["n"]
+        tol = 1e-9 * np.maximum(1.0, np.max(np.abs(Y[:, :n]), axis=1)) if n else 1e-9
+        return all(not np.any(~(np.abs(exprtree.evaluate(tree, cols, len(Y))) <= tol)) for tree in self.rec["starts"])
 
 
 class _Loaded:
@@ -142,21 +176,48 @@ class _Loaded:
 
 
 def run(rec: dict, vary: dict, params: dict, initial: dict, t_end: float, rtol: float, atol: float,
-        threads: int | None, chunk: int | None):
-    """The sweep from the record (a :class:`~rigidkin.numeric.sweeps.sweep_result.SweepResult`), or None."""
+        threads: int | None, chunk: int | None, stream: int | None = None, backend: str = "c"):
+    """The sweep from the record (a :class:`~rigidkin.numeric.sweeps.sweep_result.SweepResult`), or None.
+    ``stream``: nothing is run yet; the :class:`RecordSweep` that runs it that many runs at a time.
+    ``backend``: ``"c"``, or ``"gpu"`` (the record's C file in its device form)."""
     if not _valid(rec):
         return None
-    planned = plan(rec, vary, params, initial)
-    if planned is None:
+    planner = planner_of(rec, vary, params, initial, stream)
+    if planner is None:
         return None
-    inputs, P, Y = planned
+    if backend == "gpu":
+        model = GpuModel(rec["source"], len(rec["parameters"]))
+    else:
+        try:
+            ffi, lib = build(rec["source"], rec["cdef"])
+        except CacheError:
+            return None
+        model = _Loaded(ffi, lib, len(rec["parameters"]))
+    out = RecordSweep(rec, planner, model, float(t_end), rtol, atol, threads, chunk)
+    if stream is not None:
+        return out
+    planned = planner(0, planner.runs)
+    return None if planned is None else out.integrate(0, *planned)
 
-    try:
-        ffi, lib = build(rec["source"], rec["cdef"])
-    except CacheError:
-        return None
-    model = _Loaded(ffi, lib, len(rec["parameters"]))
-    events = [batch.Event(nm, o, d, term) for nm, o, d, term in rec["events"]]
-    res = batch.integrate(model, Y, P, (0.0, float(t_end)), events, rtol, atol, np.inf, workers=threads, chunk=chunk)
-    layout = Layout(rec["labels"], rec["parameters"], rec["n"])
-    return SweepResult(rec["system"], layout, inputs, P, Y, res, "c")
+
+class RecordSweep:
+    """A sweep answered from its record, run in parts as :class:`rigidkin.numeric.sweeps.sweep.Prepared` is."""
+
+    def __init__(self, rec, planner: Planner, model, t_end, rtol, atol, threads, chunk):
+        self.rec, self.planner, self.model, self.runs = rec, planner, model, planner.runs
+        self.t_end, self.rtol, self.atol, self.threads, self.chunk = t_end, rtol, atol, threads, chunk
+        self.events = [batch.Event(nm, o, d, term) for nm, o, d, term in rec["events"]]
+        self.layout = Layout(rec["labels"], rec["parameters"], rec["n"])
+
+    def part(self, first: int, stop: int):
+        """Runs ``first`` … ``stop - 1``: their SweepResult."""
+        planned = self.planner(first, stop)
+        if planned is None:
+            raise InputError("the sweep's values are not all finite numbers.", where="sweep")
+        return self.integrate(first, *planned)
+
+    def integrate(self, first: int, inputs, P, Y):
+        """The planned runs integrated: their SweepResult."""
+        res = batch.integrate(self.model, Y, P, (0.0, self.t_end), self.events, self.rtol, self.atol, np.inf,
+                              workers=self.threads, chunk=self.chunk)
+        return SweepResult(self.rec["system"], self.layout, inputs, P, Y, res, self.model.backend, first=first)

@@ -31,6 +31,7 @@ class SweepResult:
     result: batch.BatchResult
     backend: str
     record: dict | None = None             # the numeric record a repeat can be answered from (keep_record)
+    first: int = 0                         # the number of the first run (a chunk of a streamed sweep)
 
     def __len__(self) -> int:
         return len(self.result)
@@ -55,7 +56,7 @@ class SweepResult:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The table: one column per input, parameter, event time and state, final time and state, status."""
-        pairs = [("run", np.arange(len(self)))]
+        pairs = [("run", np.arange(self.first, self.first + len(self)))]
         pairs += [(name, self.params[:, j]) for j, name in enumerate(self.layout.parameters)]
         pairs += [(name, v) for name, v in self.inputs.items() if name not in self.layout.parameters]
         for k, ev in enumerate(self.result.event_names):
