@@ -287,7 +287,13 @@ class Prepared:
                                  self.grid, functools.partial(_unknown, self.system, layout), (first, stop), self.axes)
         if not np.all(np.isfinite(P)) or not np.all(np.isfinite(Y)):
             raise InputError("the sweep's values are not all finite numbers.", where="sweep")
-        complete(Y, P, self.rel, given, functools.partial(_vector_eval, layout.arguments()))
+        symbolic = functools.partial(_vector_eval, layout.arguments())
+        rough = Y.copy()
+        complete(Y, P, self.rel, given, symbolic)
+        unreal = ~np.isfinite(Y)             # a relation with no real value here: the assembly says why
+        Y[unreal] = rough[unreal]
+        if assemble_runs(self.system, self.mode, layout, Y, P, first=first):   # simulate's rule, or refused
+            complete(Y, P, ([], self.rel[1]), given, symbolic)
         return inputs, P, Y
 
     def _model(self, r: int):

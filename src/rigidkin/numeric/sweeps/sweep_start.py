@@ -49,9 +49,11 @@ def _columns(fn, Y: np.ndarray, P: np.ndarray, n: int, count: int) -> np.ndarray
     return out if out.shape == (len(Y), count) else None
 
 
-def assemble_runs(system, mode, layout: StateLayout, Y: np.ndarray, P: np.ndarray, where: str = "sweep") -> bool:
+def assemble_runs(system, mode, layout: StateLayout, Y: np.ndarray, P: np.ndarray, where: str = "sweep",
+                  first: int = 0) -> bool:
     """Assemble each run's start (rows of ``Y``, parameters ``P``) in place; True when a coordinate moved (the
-    dependent rates are then to be completed again).  InputError for a run that cannot start in the mode."""
+    dependent rates are then to be completed again).  InputError for a run that cannot start in the mode
+    (runs are numbered from ``first`` + 1: a chunk of a streamed sweep)."""
     hyb, full = _hybrid_and_mode(system, mode)
     cons = hyb.position_constraints(full)
     n = layout.n
@@ -63,9 +65,9 @@ def assemble_runs(system, mode, layout: StateLayout, Y: np.ndarray, P: np.ndarra
         for r in todo:                      # Newton for the runs off their constraints only
             y, p = Y[r], P[r]
             try:
-                y2 = assemble(cons, layout, 0.0, y, p, f"{where}, run {r + 1}")
+                y2 = assemble(cons, layout, 0.0, y, p, f"{where}, run {first + r + 1}")
             except InputError as exc:
-                raise InputError(f"run {r + 1} ({_run_text(layout, y, p)}): {exc.message}", where=where,
+                raise InputError(f"run {first + r + 1} ({_run_text(layout, y, p)}): {exc.message}", where=where,
                                  hint=exc.hint) from None
             if np.any(y2[:n] != y[:n]):
                 Y[r, :n] = y2[:n]
@@ -80,13 +82,13 @@ def assemble_runs(system, mode, layout: StateLayout, Y: np.ndarray, P: np.ndarra
         inside, apart = np.flatnonzero(gaps < -tol), np.flatnonzero(gaps > tol)
         if len(inside):
             r = int(inside[0])
-            raise InputError(f"run {r + 1} ({_run_text(layout, Y[r], P[r])}) puts contact {name} {-gaps[r]:.6g} "
-                             "into its surface.", where=where,
+            raise InputError(f"run {first + r + 1} ({_run_text(layout, Y[r], P[r])}) puts contact {name} "
+                             f"{-gaps[r]:.6g} into its surface.", where=where,
                              hint="Give starting values that keep the bodies outside the surfaces they touch.")
         if len(apart):
             r = int(apart[0])
-            raise InputError(f"run {r + 1} ({_run_text(layout, Y[r], P[r])}) starts with contact {name} apart "
-                             f"(gap {gaps[r]:.6g}), but the sweep integrates the mode in which it is closed.",
+            raise InputError(f"run {first + r + 1} ({_run_text(layout, Y[r], P[r])}) starts with contact {name} "
+                             f"apart (gap {gaps[r]:.6g}), but the sweep integrates the mode in which it is closed.",
                              where=where, hint=f"Sweep the mode with it open (--mode {name}=open), or "
                                                "start the runs with it touching.")
     return moved
