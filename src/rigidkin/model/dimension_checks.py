@@ -34,6 +34,7 @@ LOAD_FIELDS: dict[str, dict[str, tuple[str, Dimension]]] = {
                "natural_length": ("a length", LENGTH)},
     "TorsionalSpring": {"stiffness": ("a torsional stiffness (torque per radian)", TORQUE),
                         "angle": ("an angle (a number)", ONE), "natural_angle": ("an angle (a number)", ONE)},
+    "RotationalDamper": {"coefficient": ("a rotational damping coefficient (torque per rad/s)", TORQUE * TIME)},
     "Damper": {"law": ("a force (a law in the speed v)", FORCE)},
     "SlidingFriction": {"mu": ("a friction coefficient (a number)", ONE), "normal_force": ("a force", FORCE),
                         "radius": ("a length", LENGTH)},
@@ -126,7 +127,7 @@ def input_dimension_errors(system, unknown=()) -> list[DimensionError]:
             out.append(DimensionError(table, name, field, why))
 
     for name, ld in system.loads.items():
-        kind = type(ld).__name__
+        kind = "TorsionalSpring" if type(ld).__name__ == "RotationalSpring" else type(ld).__name__
         for field, (what, want) in LOAD_FIELDS.get(kind, {}).items():
             check("loads", name, field, getattr(ld, field, None), what, want, f"the {field} of load {name}")
     for name, p in system.points.items():

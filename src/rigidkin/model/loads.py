@@ -227,13 +227,16 @@ class TorsionalSpring(Load):
     kind = "torsional spring"
     conservative = True
 
+    def torque(self) -> sp.Expr:
+        """The torque on ``body_a`` about ``axis``: −K (angle − angle0)."""
+        return -self.stiffness * (self.angle - self.natural_angle)
+
     def applications(self, kin):
-        torque = -self.stiffness * (self.angle - self.natural_angle) * self.axis
-        out = [Application(self.body_a, None, torque, f"torsional spring {self.name} on {self.body_a.name}",
-                           self.name)]
+        torque = self.torque() * self.axis
+        out = [Application(self.body_a, None, torque, f"{self.kind} {self.name} on {self.body_a.name}", self.name)]
         if self.body_b is not None:
-            out.append(Application(self.body_b, None, -torque,
-                                   f"torsional spring {self.name} on {self.body_b.name}", self.name))
+            out.append(Application(self.body_b, None, -torque, f"{self.kind} {self.name} on {self.body_b.name}",
+                                   self.name))
         return out
 
     def potential(self, kin):

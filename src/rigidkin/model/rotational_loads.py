@@ -20,38 +20,16 @@ from sympy.physics.vector import Vector
 from ..base import algebra
 from ..base.errors import ModelError
 from .checks import NONNEGATIVE
-from .loads import Application, Load
+from .loads import Application, Load, TorsionalSpring
 from .values import _expr
 
 
 @dataclass(eq=False)
-class RotationalSpring(Load):
-    """Torque −k (θ_rel − θ0) n on ``body_a`` and its opposite on ``body_b`` (None: the ground)."""
-
-    body_a: object = None
-    body_b: object | None = None
-    stiffness: sp.Expr = None
-    angle: sp.Expr = None
-    natural_angle: sp.Expr = sp.Integer(0)
-    axis: Vector = None
+class RotationalSpring(TorsionalSpring):
+    """Torque −k (θ_rel − θ0) n on ``body_a`` and its opposite on ``body_b`` (None: the ground): a torsional
+    spring whose angle θ_rel the system reads from the frames (see the module's docstring)."""
 
     kind = "rotational spring"
-    conservative = True
-
-    def torque(self) -> sp.Expr:
-        return -self.stiffness * (self.angle - self.natural_angle)
-
-    def applications(self, kin):
-        torque = self.torque() * self.axis
-        out = [Application(self.body_a, None, torque, f"rotational spring {self.name} on {self.body_a.name}",
-                           self.name)]
-        if self.body_b is not None:
-            out.append(Application(self.body_b, None, -torque, f"rotational spring {self.name} on {self.body_b.name}",
-                                   self.name))
-        return out
-
-    def potential(self, kin):
-        return self.stiffness * (self.angle - self.natural_angle) ** 2 / 2
 
 
 @dataclass(eq=False)
