@@ -60,7 +60,7 @@ def test_completion_of_subcommands_options_and_examples(tmp_path):
     pytest.importorskip("argcomplete")
     assert set(_complete("rigidkin s", tmp_path)) == {"solve", "simulate", "sweep"}
     assert "--t-end" in _complete("rigidkin simulate ladder --t", tmp_path)
-    assert set(_complete("rigidkin solve --format ", tmp_path)) == {"text", "latex", "json"}
+    assert set(_complete("rigidkin solve --format ", tmp_path)) == {"text", "latex", "markdown", "json"}
     (tmp_path / "my_card.toml").write_text("")
     (tmp_path / "notes.txt").write_text("")
     words = _complete("rigidkin solve ", tmp_path)
