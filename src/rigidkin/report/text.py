@@ -71,6 +71,11 @@ def reaction_labels(system) -> dict[str, str]:
             if c.description:
                 label += f" ({c.description})"
             out[name] = label
+        if c.kind == "pin" and getattr(c, "axis", None):      # a 3D hinge: its torques about the other two axes
+            frame_name, _, along = str(c.axis).partition(".")
+            for comp in "xyz".replace(along[-1:], "") if along else "":
+                label = f"hinge torque of {c.name} about {frame_name}.{comp} (the hinge turns about {c.axis})"
+                out.setdefault(f"M_{c.name}{comp}", label + (f" ({c.description})" if c.description else ""))
     return out
 
 
