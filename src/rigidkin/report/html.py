@@ -67,6 +67,9 @@ def offline_player(player: str) -> str:
     player = re.sub(r"<link[^>]*font-awesome[^>]*>", "", player)
     for cls, ch in _ICONS.items():
         player = player.replace(f'<i class="fa {cls}"></i>', f'<span class="icon">{ch}</span>')
+    # its frame slider and its loop-mode buttons named for a screen reader (axe-core: form elements need labels)
+    player = re.sub(r'<input(?![^>]*aria-label)(?=[^>]*id="_anim_slider)', '<input aria-label="animation frame"',
+                    player)
     return player
 
 
