@@ -287,6 +287,21 @@ def _impulse(system, question, f, context):
                   details={"end_state": end, "reaction_impulses": dict(res.reaction_impulses)})
 
 
+def selects(regime, q, sign: int) -> bool:
+    """Whether ``q > 0`` (``sign`` 1) or ``q < 0`` (``sign`` −1) is the condition of ``regime``: each of its
+    conditions is that sign of ±q (a regime without conditions holds everywhere)."""
+    ok = True
+    for c in regime.conditions:
+        csign = 1 if c.relation in (">", ">=") else -1
+        if algebra.is_zero(c.expr - q):
+            ok &= csign == sign
+        elif algebra.is_zero(c.expr + q):
+            ok &= csign == -sign
+        else:
+            ok = False
+    return ok
+
+
 def _regime_index(system, f) -> int | None:
     """The regime a relation such as ``dot(x) + r*dot(phi) < V`` selects (matched to a regime condition)."""
     rel = f.get("regime")
@@ -300,16 +315,7 @@ def _regime_index(system, f) -> int | None:
     setup = sol.setup
     q = setup.scalar(q)
     for i, r in enumerate(sol.regimes):
-        ok = True
-        for c in r.conditions:
-            csign = 1 if c.relation in (">", ">=") else -1
-            if algebra.is_zero(c.expr - q):
-                ok &= csign == sign
-            elif algebra.is_zero(c.expr + q):
-                ok &= csign == -sign
-            else:
-                ok = False
-        if ok:
+        if selects(r, q, sign):
             return i
     raise InputError(f"the condition {text(rel)} does not select one of the regimes: "
                      + "; ".join(r.describe() for r in sol.regimes) + ".")

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..base import algebra
+from ..analysis.answers import selects
 from ..base.errors import InputError, RigidkinError
 from ..base.printing import text
 from ..io.expressions import parse_condition
@@ -166,16 +166,7 @@ def _by_condition(ref, motion: str, where: str):
     q = ref.setup.scalar(rel.lhs - rel.rhs)
     sign = 1 if rel.rel_op in (">", ">=") else -1
     for r in ref.regimes():
-        ok = bool(r.conditions)
-        for c in r.conditions:
-            csign = 1 if c.relation in (">", ">=") else -1
-            if algebra.is_zero(c.expr - q):
-                ok &= csign == sign
-            elif algebra.is_zero(c.expr + q):
-                ok &= csign == -sign
-            else:
-                ok = False
-        if ok:
+        if r.conditions and selects(r, q, sign):
             return r
     raise InputError(f"the motion {text(rel)} does not select one sliding regime of the problem.", where=where,
                      hint="Regimes: " + "; ".join(r.describe() for r in ref.regimes()) + ". Write the condition "
