@@ -150,6 +150,7 @@ print(res.stop_reason, res.segments[-1].mode)
 """
 
 
+@pytest.mark.slow
 def test_two_supports_identical_under_three_hash_seeds():
     outs = []
     for seed in ("0", "1", "12345"):

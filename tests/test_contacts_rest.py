@@ -34,6 +34,7 @@ def rocking_block(tilt=0.2, b=0.4, h=0.6, m=2.0):
     return s
 
 
+@pytest.mark.slow
 def test_block_rocking_on_rolling_corners_comes_to_rest_on_both():
     b, h, m = 0.4, 0.6, 2.0
     res = simulate(rocking_block(0.2, b, h, m), 1.5, restitution=0.0)

@@ -193,6 +193,7 @@ def test_a_cache_folder_removed_while_running_is_no_error(cache, problem):
 
 
 # concurrent runs ----------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_concurrent_runs_on_the_same_and_on_different_files(cache, problem, tmp_path, capsys):
     other = tmp_path / "q.toml"
     other.write_bytes(LADDER.replace(b"value = 2 }", b"value = 3 }"))      # l = 3 m

@@ -12,6 +12,8 @@ import importlib.util
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parent.parent
 
 
@@ -24,6 +26,7 @@ def _bench():
     return mod
 
 
+@pytest.mark.slow          # a minute on 2 cores: every step of the benchmark graded
 def test_benchmark_has_no_wrong_verdict():
     rows = _bench().run()
     assert len(rows) >= 150
