@@ -21,7 +21,7 @@ through a subprocess with the interpreter that has Siconos; skipped with the rea
 
 Siconos has one friction coefficient, so µs = µk here.  CPU times are process times of one run each:
 rigidkin's first run includes the symbolic derivation, its repeat run reuses it; Siconos's includes
-building its model.
+building its model and runs with one BLAS thread (OPENBLAS_NUM_THREADS=1, OMP_NUM_THREADS=1).
 """
 
 import argparse
@@ -211,7 +211,10 @@ def run_siconos(python, h_step):
     probe = subprocess.run([python, "-c", "import siconos.kernel"], capture_output=True, text=True)
     if probe.returncode:
         return {}, [f"{python} cannot import siconos.kernel ({probe.stderr.strip().splitlines()[-1:]})"]
-    out = subprocess.run([python, str(script), json.dumps(params)], capture_output=True, text=True, timeout=900)
+    # one BLAS thread: Siconos's idle OpenBLAS threads otherwise spin and count as its CPU time (2–6× here)
+    env = os.environ | {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+    out = subprocess.run([python, str(script), json.dumps(params)], capture_output=True, text=True, timeout=900,
+                         env=env)
     if out.returncode:
         return {}, [f"siconos_cases.py failed: {out.stderr.strip()[-500:]}"]
     got = json.loads(out.stdout)
@@ -299,6 +302,15 @@ def friction_rows(sic):
     return rows, cpu
 
 
+def cpu_model():
+    """The processor's name from /proc/cpuinfo where there is one, else what platform knows."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            return next(line.split(":", 1)[1].strip() for line in f if line.startswith("model name"))
+    except (OSError, StopIteration):
+        return platform.processor() or platform.machine()
+
+
 def fmt(v):
     return "—" if v is None else f"{v:.10g}" if isinstance(v, float) else str(v)
 
@@ -321,7 +333,7 @@ def main():
     rows += more
     cpu |= c
 
-    print(f"{platform.node()}: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
+    print(f"{platform.node()}: {cpu_model()}, {os.cpu_count()} cores, "
           f"load average {load0[0]:.2f} at the start, {os.getloadavg()[0]:.2f} at the end; Python "
           f"{platform.python_version()}; Siconos via {args.siconos_python}\n")
     print("| case | quantity | rigidkin | Siconos | closed form | rigidkin − closed | Siconos − closed |")

@@ -157,14 +157,14 @@ def two_supports(p):
     sim.insertNonSmoothProblem(sk.LCP(), sk.SICONOS_OSNSP_ED_SMOOTH_ACC)
     sim.initialize()
     impacts, steps = [], 0
-    while sim.hasNextEvent() and steps < p.get("max_steps", 20000) and len(impacts) < p.get("impacts", 6):
+    while sim.hasNextEvent() and steps < p.get("max_steps", 20000):          # to T, as rigidkin runs
         sim.advanceToEvent()
         steps += 1
         impact = sim.eventsManager().nextEvent().getType() == 2
         if impact:
             before = {"t": sim.nextTime(), "v_before": float(ds.velocity()[0])}
         sim.processEvents()
-        if impact:
+        if impact and len(impacts) < p.get("impacts", 6):
             impacts.append(before | {"v_after": float(ds.velocity()[0]), "w_after": float(ds.velocity()[1]),
                                      "P_A": float(inters[0].lambda_(1)[0]), "P_B": float(inters[1].lambda_(1)[0])})
     return {"impacts": impacts, "cpu_s": _cpu() - t0, "steps": steps}
@@ -186,12 +186,12 @@ def two_supports_rough(p):
         nsds.link(inters[-1], ds)
     sim = _time_stepping(nsds, p["h_step"], p["mu"])
     impacts, steps = [], 0
-    while sim.hasNextEvent() and len(impacts) < p.get("impacts", 6):
+    while sim.hasNextEvent():                                           # to T, as rigidkin runs
         v0 = float(ds.velocity()[1])
         sim.computeOneStep()
         steps += 1
         v1 = float(ds.velocity()[1])
-        if v0 < -g * p["h_step"] and v1 > 0:
+        if v0 < -g * p["h_step"] and v1 > 0 and len(impacts) < p.get("impacts", 6):
             lam = [inter.lambda_(1) for inter in inters]
             impacts.append({"t": sim.nextTime(), "v_before": v0, "v_after": v1, "w_after": float(ds.velocity()[2]),
                             "P_A": float(lam[0][0]), "P_B": float(lam[1][0]), "F_A": float(lam[0][1]),
