@@ -208,7 +208,10 @@ def run_siconos(python, h_step):
               "two_supports": TWO, "two_supports_rough": TWO_ROUGH | {"h_step": h_step},
               "rocking": ROCK | {"h_step": h_step}}
     script = Path(__file__).with_name("siconos_cases.py")
-    probe = subprocess.run([python, "-c", "import siconos.kernel"], capture_output=True, text=True)
+    try:
+        probe = subprocess.run([python, "-c", "import siconos.kernel"], capture_output=True, text=True)
+    except OSError as exc:
+        return {}, [f"{python} cannot run ({exc.strerror})"]
     if probe.returncode:
         return {}, [f"{python} cannot import siconos.kernel ({probe.stderr.strip().splitlines()[-1:]})"]
     # one BLAS thread: Siconos's idle OpenBLAS threads otherwise spin and count as its CPU time (2–6× here)

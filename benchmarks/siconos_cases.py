@@ -75,7 +75,7 @@ def ball(p):
                                           "dot_y": float(ds.velocity()[0])}, "cpu_s": cpu, "steps": steps}
 
 
-def _time_stepping(nsds, h, mu):
+def _time_stepping(nsds, h):
     """Moreau–Jean (θ = 0.5) with a 2D friction-contact problem solved to 1e-14 (at most 1000 iterations)."""
     osnspb = sk.FrictionContact(2)
     osnspb.numericsSolverOptions().iparam[0] = 1000
@@ -100,7 +100,7 @@ def _friction_block(p, q0, v0, fext, k=0.0):
     nsds = sk.NonSmoothDynamicalSystem(0.0, T)
     nsds.insertDynamicalSystem(ds)
     nsds.link(inter, ds)
-    sim = _time_stepping(nsds, h, mu)
+    sim = _time_stepping(nsds, h)
     ts, xs, vs = [0.0], [q0[0]], [v0[0]]
     while sim.hasNextEvent():
         sim.computeOneStep()
@@ -184,7 +184,7 @@ def two_supports_rough(p):
         H = np.array([[0.0, 1.0, d], [1.0, 0.0, 0.0]])
         inters.append(sk.Interaction(sk.NewtonImpactFrictionNSL(e, 0.0, p["mu"], 2), sk.LagrangianLinearTIR(H)))
         nsds.link(inters[-1], ds)
-    sim = _time_stepping(nsds, p["h_step"], p["mu"])
+    sim = _time_stepping(nsds, p["h_step"])
     impacts, steps = [], 0
     while sim.hasNextEvent():                                           # to T, as rigidkin runs
         v0 = float(ds.velocity()[1])
@@ -227,8 +227,12 @@ def _corner_plugin(folder):
     src = os.path.join(folder, "corners.c")
     with open(src, "w") as f:
         f.write(CORNERS_C)
-    out = subprocess.run([os.environ.get("CC", "cc"), "-O2", "-shared", "-fPIC", "-o",
-                          os.path.join(folder, "corners.so"), src, "-lm"], capture_output=True, text=True)
+    cc = os.environ.get("CC", "cc")
+    try:
+        out = subprocess.run([cc, "-O2", "-shared", "-fPIC", "-o", os.path.join(folder, "corners.so"), src, "-lm"],
+                             capture_output=True, text=True)
+    except FileNotFoundError:
+        raise RuntimeError(f"no C compiler {cc!r} to build the corner plugin (set CC)") from None
     if out.returncode:
         raise RuntimeError(f"cc could not build the corner plugin: {out.stderr.strip()[-300:]}")
     return os.path.join(folder, "corners")
@@ -253,7 +257,7 @@ def rocking(p):
             rel = sk.LagrangianScleronomousR(f"{plugin}:h{c}", f"{plugin}:G{c}")
             inters.append(sk.Interaction(sk.NewtonImpactFrictionNSL(p["e"], 0.0, p["mu"], 2), rel))
             nsds.link(inters[-1], ds)
-        sim = _time_stepping(nsds, p["h_step"], p["mu"])
+        sim = _time_stepping(nsds, p["h_step"])
         ts, th, w, lam, slip = [0.0], [th0], [0.0], [(0.0, 0.0, 0.0, 0.0)], 0.0
         while sim.hasNextEvent():
             sim.computeOneStep()
