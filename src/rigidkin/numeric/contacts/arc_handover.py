@@ -105,7 +105,8 @@ def _hand_over(hyb, model, w, t_, y, p, e_of, rest_speed, transition, current_si
                                f"that lets {hyb.contacts[name].body.name} leave its arc (with {name} open, "
                                f"{exc.message.split(': ', 1)[-1].rstrip('.')}).",
                     f"Give {hyb.contacts[name].body.name} the coordinates of a free body in the plane (the height "
-                    "of its flat-face centre too), so that it can rock on the edge and land on its flat face.") from None
+                    "of its flat-face centre too), so that it can rock on the edge and land on its flat "
+                    "face.") from None
     if vn < -max(rest_speed, zero):           # the edge strikes: an impact (not reached from a closed arc)
         opened = {**mode, name: OPEN}
         w2 = replace(w, kind="arc-impact", name=edge, label=f"impact at {edge}", quantity=f"gap of {edge}")

@@ -22,6 +22,7 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ...derive.derivation import derivation_of
+from ...derive.mode import _check_fixed_points, _check_model  # the checks every derivation of kinematics runs
 from ...model.arc_edges import with_edges
 from .vocabulary import OPEN
 
@@ -33,8 +34,6 @@ def extended(system):
     faces added where planar motion on a straight surface has them (model.arc_edges)."""
     if not any(getattr(c, "arc", None) is not None for c in system.constraints.values()):
         return system, {}
-    from ...derive.mode import _check_fixed_points, _check_model   # the checks of every derivation
-
     kin = derivation_of(system).kinematics(checks=lambda k: (_check_model(system, k), _check_fixed_points(system, k)))
     if not kin.planar:
         return system, {}

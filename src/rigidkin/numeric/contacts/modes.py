@@ -78,6 +78,8 @@ class Hybrid:
     def _system_for(self, mode: dict):
         """The system a mode is derived on: the one given while every edge is open (its own derivations,
         kept between runs), else the one with the edges."""
+        if not self.edges:
+            return self.system, dict(mode)
         if all(mode.get(e) == OPEN for es in self.edges.values() for e in es):
             return self.base, {n: s for n, s in mode.items() if n in self.base.constraints}
         return self.system, dict(mode)
