@@ -77,6 +77,8 @@ def test_rolling_half_disk_rocks_on_its_edge_and_back(rolling):
     ev = res.events
     assert [e.kind for e in ev[:3]] == ["arc", "arc-back", "arc"]
     assert ev[0].name == "the arc of P ends: the edge P_edge2 takes the contact"
+    js = res.to_dict()["events"][0]
+    assert (js["kind"], js["name"]) == ("arc", ev[0].name) and "P_edge2 takes the contact" in js["detail"]
     assert ev[1].name == "the edge P_edge2 hands the contact back to the arc of P"
     assert ev[2].name == "the arc of P ends: the edge P_edge1 takes the contact"
     assert (ev[0].mode_before, ev[0].mode_after) == ("P rolling", "P open, P_edge2 sticking")
@@ -114,6 +116,21 @@ def test_released_on_its_edge_it_rocks_back_onto_the_arc(rolling):
     assert back.state["dot(theta)"] == pytest.approx(-np.sqrt(2 * M * G * (_v(th0) - R) / I_E), rel=1e-7)
     assert res.events[1].kind == "arc" and res.events[1].contact == "P"
     assert min(res.q["theta"]) == pytest.approx(-th0, abs=2e-3)        # sampled near the turning point
+
+
+def test_a_no_slip_edge_cannot_let_it_fall_flat(rolling):
+    """At rest on E2 past the top (θ0 = 2.0 > π/2 + δ) it pivots towards the flat face; on a no-slip edge
+    N = m (g + θ̈ u − θ̇² v) with θ̈ = −m g u / I_E and ½ I_E θ̇² = m g (v(θ0) − v(θ)) reaches zero before θ = π
+    (there N = m (g/3 − b θ̇²) < 0), where flight would need the edge to sink: the run stops and says why."""
+    th0 = 2.0
+    res = simulate(rolling, 1.0, {"theta": th0, "y": R * np.sin(th0), "dot(theta)": 0.0})
+    assert res.stop_reason == "no-consistent-mode" and "P_edge2" in res.message
+    th = res.final_state["theta"]
+    u, v = R * np.cos(th) + B * np.sin(th), _v(th)
+    w2 = 2 * M * G * (_v(th0) - v) / I_E
+    assert res.final_state["dot(theta)"] ** 2 == pytest.approx(w2, rel=1e-7)
+    assert np.pi / 2 + DELTA < th < np.pi
+    assert abs(G - G * u**2 / (1.5 * R**2) - w2 * v) < 1e-6 * G          # N = 0 by hand where it stops
 
 
 def _landing(ev, mu):
