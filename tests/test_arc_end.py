@@ -104,6 +104,29 @@ def test_rolling_half_disk_rocks_on_its_edge_and_back(rolling):
     assert res.energy_drift < 1e-7
 
 
+def test_an_edge_that_approaches_at_the_hand_over_strikes(rolling):
+    """A closed arc hands over with the edge at rest (above); were the edge approaching (here the state at the
+    hand-over with ẏ = −0.5 put in by hand), the hand-over is a plastic no-slip impact at E2: the angular momentum
+    about E2 is kept, H = I_G ω + m (G − E2) × v_G = I_E ω + m b ẏ (G − E2 = (b, r), v_G = (−r ω, ẏ + b ω)), so
+    ω⁺ = ω + m b ẏ / I_E, and E2 at rest after (ẋ⁺ = −r ω⁺, ẏ⁺ = 0)."""
+    from rigidkin.numeric.contacts.transition import transition
+    from rigidkin.numeric.simulate import hybrid_of
+
+    res = simulate(rolling, 0.25, {"theta": 0.0, "dot(theta)": 12.0})
+    ev, seg = res.events[0], res.segments[0]
+    hyb = hybrid_of(rolling)
+    lay = hyb.layout
+    y = np.array([ev.state[k] for k in lay.labels] + [0.0])
+    y[lay.labels.index("dot(y)")] = -0.5
+    w = next(w_ for w_ in seg.model.watches if w_.kind == "arc")
+    mode, _, y2, out = transition(hyb, seg.model, w, ev.t, y, seg.params, {"P": 0.0}, 1e-5)
+    wa = ev.state["dot(theta)"] + M * B * -0.5 / I_E
+    after = lay.as_dict(y2)
+    assert out.name == "the arc of P ends: the edge P_edge2 strikes the surface" and mode["P"] == "open"
+    assert after["dot(theta)"] == pytest.approx(wa, rel=1e-9)
+    assert after["dot(x)"] == pytest.approx(-R * wa, rel=1e-9) and abs(after["dot(y)"]) < 1e-12
+
+
 def test_released_on_its_edge_it_rocks_back_onto_the_arc(rolling):
     """At rest on the edge E2 at θ0 = 1.9 < π/2 + δ (G on the arc's side of the edge): it pivots back to θ = π/2,
     θ̇ = −√(2 m g (v(θ0) − r)/I_E), at t = edge time from π/2 to θ0; then the arc rolls on to θ = −θ0 (energy)."""
@@ -188,6 +211,29 @@ def test_edges_take_their_arc_contacts_restitution():
     land = [e for e in res.events if e.kind == "impact"][0]
     assert land.contact == "P_edge1"
     assert land.impact["separation_speed"] == pytest.approx(-0.5 * land.impact["approach_speed"], rel=1e-9)
+
+
+def test_dropped_on_its_edge_it_pivots_on_it(rolling):
+    """Dropped without spin, flat face down and tilted (θ0 = π − 0.3), from h = 1 cm above the strike: E2 = O − r B.x
+    is lowest and strikes when y = r sin θ0, after t* = √(2h/g), at v_G⁻ = (0, −g t*).  A plastic no-slip impact
+    leaves E2 at rest: the angular momentum about E2 is kept, I_E ω⁺ = m (u v_Gy⁻ − v v_Gx⁻), so
+    ω⁺ = m u v_Gy⁻ / I_E and v_G⁺ = ω⁺ (−v, u); the impulse on the body is m (v_G⁺ − v_G⁻).  (From higher up the
+    spin it takes would need a pulling edge at once: N = m (g + θ̈ u − ω⁺² v) < 0.)"""
+    th0, h = np.pi - 0.3, 0.01
+    y0 = R * np.sin(th0) + h
+    t_star = np.sqrt(2 * h / G)
+    res = simulate(rolling, 1.001 * t_star, {"theta": th0, "y": y0, "dot(theta)": 0.0, "dot(x)": 0.0})
+    hit = res.events[0]
+    assert (hit.kind, hit.contact) == ("impact", "P_edge2") and hit.t == pytest.approx(t_star, rel=1e-9)
+    assert res.segments[0].description == "P open"
+    u, v, vy = R * np.cos(th0) + B * np.sin(th0), _v(th0), -G * t_star
+    w = M * u * vy / I_E
+    assert hit.after["dot(theta)"] == pytest.approx(w, rel=1e-8)
+    imp = hit.impact["contacts"]["P_edge2"]
+    assert imp["normal_impulse"] == pytest.approx(M * (w * u - vy), rel=1e-8)
+    assert abs(imp["tangential_impulse"]) == pytest.approx(abs(M * w * v), rel=1e-8)
+    assert hit.impact["energy_change"] == pytest.approx(0.5 * I_E * w**2 - 0.5 * M * vy**2, rel=1e-8)
+    assert hit.mode_after == "P open, P_edge2 sticking"
 
 
 def test_a_half_disk_at_rest_on_its_flat_face_stays():

@@ -25,8 +25,8 @@ import numpy as np
 
 from ...model.constraints import ROLLING, SMOOTH, Coulomb
 from ..result import Event
-from ..rhs import SimulationError, compile_functions
-from .arc_support import parent_of
+from ..rhs import SimulationError
+from .arc_support import end_values, parent_of
 from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable
 
 ARC_KINDS = ("arc", "arc-back", "arc-impact")
@@ -39,29 +39,13 @@ def arc_transition(hyb, model, w, t_, y, p, e_of, rest_speed, transition, curren
         parents = parent_of(hyb)
         e_full = {**e_of, **{e: e_of.get(a, 0.0) for e, a in parents.items()}}
         name = w.name
-        if name in hyb.edges and _margin(hyb, name, t_, y, p) < 0:   # the arc's end: the edge there strikes
+        if name in hyb.edges and end_values(hyb, name, t_, y, p)[0] < 0:   # the arc's end: the edge there strikes
             name = min(hyb.edges[name], key=lambda e: abs(hyb.contact_state(e, t_, y, p)[0]))
         w2 = replace(w, kind="impact", name=name, label=f"impact at {name}", quantity=f"gap of {name}")
         return transition(hyb, model, w2, t_, y, p, e_full, rest_speed)
     if w.kind == "arc":
         return _hand_over(hyb, model, w, t_, y, p, e_of, rest_speed, transition, current_signs)
     return _hand_back(hyb, model, w, t_, y, p, current_signs)
-
-
-def _margin(hyb, name, t_, y, p) -> float:
-    """The arc margin of an arc contact with edges (the sign of g_arc − g tells it: arc_support)."""
-    c = hyb.contacts[name]
-    key = ("arc margin", name)
-    if key not in hyb._contact_fns:
-        lay = hyb.layout
-        hyb._contact_fns[key] = compile_functions(lay.arguments(), [lay.to_plain(c.arc.margin(c, hyb.kin)),
-                                                                    lay.to_plain(c.gap(hyb.kin))])
-    return float(hyb._contact_fns[key](t_, *y[:2 * hyb.layout.n], *p)[0])
-
-
-def _plain_gap(hyb, name, t_, y, p) -> float:
-    _margin(hyb, name, t_, y, p)
-    return float(hyb._contact_fns[("arc margin", name)](t_, *y[:2 * hyb.layout.n], *p)[1])
 
 
 def _closing(hyb, name, slip, zero) -> tuple[str, int]:
@@ -131,7 +115,7 @@ def _hand_back(hyb, model, w, t_, y, p, current_signs):
     before = hyb.layout.as_dict(y)
     edges = [e for e in hyb.edges[name] if mode[e] != OPEN]
     gap, vn, slip = hyb.contact_state(name, t_, y, p)
-    if abs(_plain_gap(hyb, name, t_, y, p)) > zero:        # the arc's end comes back above the surface
+    if abs(end_values(hyb, name, t_, y, p)[2]) > zero:        # the arc's end comes back above the surface
         k = hyb.regime_at(mode, t_, y, p, current_signs(hyb, model))
         return _finish(hyb, model, w, t_, y, p, mode, k, [f"the arc of {name} comes back clear of the surface"],
                        before, w.label)

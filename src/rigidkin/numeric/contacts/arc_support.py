@@ -11,9 +11,11 @@ is g + r(1 − √(1 − m²)) ≤ g + r|m| (g the gap of the whole circle); the
     g_arc = g + r (|m| − m)         (= g where m ≥ 0; above every end's gap where m < 0)
 
 which reaches zero only where the arc itself touches, or at its very end together with the edge there;
-its rate is the arc's normal speed.  Lying on the flat face g_arc = r > 0, so the flat face never reads as
-the arc touching.  While an edge touches, the arc can come back only through its end: the margin rising
-through zero (the watch ``arc-back``) with the edge on the surface hands the contact back.
+its rate is the arc's normal speed.  Lying on the flat face g_arc = r > 0, so the flat face never reads
+as the arc touching.  At the very end (m = 0 within round-off) the arc counts as touching only while the
+motion brings it back onto the arc (ṁ > 0); leaving, or at rest there, the edge has the contact.  While an
+edge touches, the arc can come back only through its end: the margin rising through zero (the watch
+``arc-back``) with the edge on the surface hands the contact back.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from sympy.physics.vector import dynamicsymbols
 from ...derive.derivation import derivation_of
 from ...derive.mode import _check_fixed_points, _check_model  # the checks every derivation of kinematics runs
 from ...model.arc_edges import with_edges
+from ..rhs import compile_functions
 from .vocabulary import OPEN
 
 t = dynamicsymbols._t
@@ -79,3 +82,21 @@ def off_arc(hyb, t_, y, p) -> dict:
     """{arc contact: open} for every arc contact with edges that does not touch at the state (g_arc > 0)."""
     scale = max(1.0, float(max(abs(v) for v in y[:2 * hyb.layout.n])))
     return {a: OPEN for a in hyb.edges if hyb.contact_state(a, t_, y, p)[0] > 1e-9 * scale}
+
+
+def end_values(hyb, name, t_, y, p) -> tuple[float, float, float]:
+    """(arc margin m, its rate ṁ, the whole circle's gap g) of an arc contact at a state."""
+    key = ("arc end", name)
+    if key not in hyb._contact_fns:
+        c, kin, lay = hyb.contacts[name], hyb.kin, hyb.layout
+        m = c.arc.margin(c, kin)
+        hyb._contact_fns[key] = compile_functions(lay.arguments(), [lay.to_plain(e) for e in
+                                                                    (m, sp.diff(m, t), c.gap(kin))])
+    m, dm, g = (float(v) for v in hyb._contact_fns[key](t_, *y[:2 * hyb.layout.n], *p))
+    return m, dm, g
+
+
+def leaving_end(hyb, name, t_, y, p) -> bool:
+    """At the end of the arc (m = 0 within round-off) and not coming back onto it (ṁ ≤ 0)."""
+    m, dm, _ = end_values(hyb, name, t_, y, p)
+    return abs(m) <= 1e-9 and dm <= 0

@@ -33,7 +33,7 @@ from ...model.constraints import ROLLING, SMOOTH, Contact, Coulomb
 from ...model.inputs import input_symbols
 from ..rhs import RegimeFunctions, compile_functions
 from ..state import PositionConstraints, StateLayout, assemble
-from .arc_support import arc_gap, arc_watches, dormant, extended, off_arc, parent_of
+from .arc_support import arc_gap, arc_watches, dormant, extended, leaving_end, off_arc, parent_of
 from .mode_model import ModeModel, Watch
 from .settle import regime_at, settle
 from .slip3d import expand
@@ -247,6 +247,8 @@ class Hybrid:
     def contact_state(self, name: str, t_, y, p) -> tuple[float, float, float | None]:
         f, n = self.contact_functions(name)
         vals = [float(v) for v in f(t_, *y[:2 * self.layout.n], *p)]
+        if name in self.edges and leaving_end(self, name, t_, y, p):      # the arc's end, leaving: the edge's
+            vals[0] = abs(vals[0]) + float(self._param_value(self.contacts[name].radius, p))
         return vals[0], vals[1], (vals[2] if n > 2 else None)
 
     def relation_functions(self, mode: dict, integrated: bool = False):
