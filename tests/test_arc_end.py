@@ -156,6 +156,25 @@ def test_a_no_slip_edge_cannot_let_it_fall_flat(rolling):
     assert abs(G - G * u**2 / (1.5 * R**2) - w2 * v) < 1e-6 * G          # N = 0 by hand where it stops
 
 
+def test_frictionless_edge_slides_back_onto_the_arc():
+    """Smooth: at rest on E2 at θ0 = 1.9, G falls straight down (x_G fixed) while E2 slides; y_G = v(θ), ẏ_G = u θ̇,
+    so ½ (I_G + m u²) θ̇² + m g v(θ) = m g v(θ0).  At θ = π/2 (u = b) the arc takes the contact back, sliding, with
+    θ̇² = 2 m g (v(θ0) − r)/(I_G + m b²); the motion is symmetric, so it swings to θ = −θ0 on E1."""
+    th0 = 1.9
+    res = simulate(half_disk("smooth"), 0.8, {"theta": th0, "y": R * np.sin(th0), "dot(theta)": 0.0,
+                                              "dot(x)": 0.0})
+    assert res.stop_reason == "completed"
+    back = res.events[0]
+    assert back.kind == "arc-back" and (back.mode_before, back.mode_after) == ("P open, P_edge2 closed", "P closed")
+    assert back.state["dot(theta)"] == pytest.approx(-np.sqrt(2 * M * G * (_v(th0) - R) / (I_G + M * B**2)),
+                                                     rel=1e-7)
+    assert [e.kind for e in res.events[:2]] == ["arc-back", "arc"] and res.events[1].contact == "P"
+    assert res.events[1].name.endswith("the edge P_edge1 takes the contact")
+    assert min(res.q["theta"]) == pytest.approx(-th0, abs=2e-3)
+    xg = res.q["x"] + B * np.sin(res.q["theta"])                           # x_G = x + b sin θ stays put
+    assert np.max(np.abs(xg - xg[0])) < 1e-8 and res.energy_drift < 1e-7
+
+
 def _landing(ev, mu):
     """Impulse–momentum at θ = π (flat face landing on E1, E2 already touching), e = 0: both edges end with zero
     normal speed, so v_Gy⁺ = 0 and ω⁺ = 0; S = Λ1 + Λ2 = −m v_Gy⁻; sliding (if |v_Gx⁻| > µ S/m) takes
