@@ -114,7 +114,8 @@ def _hand_back(hyb, model, w, t_, y, p, current_signs):
     zero = 1e-9 * scale
     before = hyb.layout.as_dict(y)
     edges = [e for e in hyb.edges[name] if mode[e] != OPEN]
-    gap, vn, slip = hyb.contact_state(name, t_, y, p)
+    slip = hyb.contact_state(name, t_, y, p)[2]
+    vn = hyb.contact_state(edges[0], t_, y, p)[1] if edges else 0.0     # the arc's end is where the edge is
     if abs(end_values(hyb, name, t_, y, p)[2]) > zero:        # the arc's end comes back above the surface
         k = hyb.regime_at(mode, t_, y, p, current_signs(hyb, model))
         return _finish(hyb, model, w, t_, y, p, mode, k, [f"the arc of {name} comes back clear of the surface"],
