@@ -139,7 +139,7 @@ def decide(hyb, t_, y, p, proposal: dict | None = None, forced: dict | None = No
            every: bool = False) -> Decision:
     """The consistent mode at a state (see the module docstring); ``every``: look for all solutions."""
     forced = dict(forced or {})
-    base = dict(proposal or hyb.default_mode())
+    base = dict(proposal or hyb.default_mode(t_, y, p))
     scale = max(1.0, float(np.max(np.abs(np.asarray(y)[:2 * hyb.layout.n]))))
     zero = zero_tol * scale
     names = touching(hyb, base, t_, y, p, zero)

@@ -33,6 +33,7 @@ from ...model.constraints import ROLLING, SMOOTH, Contact, Coulomb
 from ...model.inputs import input_symbols
 from ..rhs import RegimeFunctions, compile_functions
 from ..state import PositionConstraints, StateLayout, assemble
+from .arc_support import arc_gap, arc_watches, dormant, extended, leaving_end, off_arc, parent_of
 from .mode_model import ModeModel, Watch
 from .settle import regime_at, settle
 from .slip3d import expand
@@ -45,9 +46,10 @@ class Hybrid:
     """The modes of one system: derived once each, with their numeric functions and transitions."""
 
     def __init__(self, system, layout: StateLayout | None = None):
-        self.system = system
         self.layout = layout or StateLayout.of(system)
-        self.contacts = {n: c for n, c in system.constraints.items() if isinstance(c, Contact)}
+        self.system, self.edges = extended(system)     # the edges at the ends of half shapes' arcs (arc_support)
+        self.base = system
+        self.contacts = {n: c for n, c in self.system.constraints.items() if isinstance(c, Contact)}
         self._solutions: dict = {}
         self._models: dict = {}
         self._contact_fns: dict = {}
@@ -62,7 +64,8 @@ class Hybrid:
         key = mode_key(mode)
         if key not in self._solutions:
             try:              # 3D slip: the direction relative to a reference tangent (slip3d.expand)
-                self._solutions[key] = expand(self.system.solve(mode=dict(mode), integrate=False))
+                system, mode_ = self._system_for(mode)
+                self._solutions[key] = expand(system.solve(mode=mode_, integrate=False))
             except ModelError as exc:   # ConstraintError included
                 self._solutions[key] = ModeUnavailable(
                     f"the mode ({describe_mode(self.system, mode)}) cannot be derived from the model: "
@@ -72,15 +75,27 @@ class Hybrid:
             raise sol
         return sol
 
+    def _system_for(self, mode: dict):
+        """The system a mode is derived on: the one given while every edge is open (its own derivations,
+        kept between runs), else the one with the edges."""
+        if not self.edges:
+            return self.system, dict(mode)
+        if all(mode.get(e) == OPEN for es in self.edges.values() for e in es):
+            return self.base, {n: s for n, s in mode.items() if n in self.base.constraints}
+        return self.system, dict(mode)
+
     @property
     def kin(self):
         if self._kin is None:
             self._kin = derivation_of(self.system).kinematics()
         return self._kin
 
-    def default_mode(self) -> dict:
-        """Every contact closed: rolling contacts stick, the others slip (friction decides later)."""
-        return {n: (STICK if c.friction == ROLLING else SLIP) for n, c in self.contacts.items()}
+    def default_mode(self, t_=None, y=None, p=None) -> dict:
+        """Every contact closed: rolling contacts stick, the others slip (friction decides later).  The edges at
+        the ends of arcs are open; given a state, an arc that does not touch there is open (arc_support)."""
+        edges = {e for es in self.edges.values() for e in es}     # an edge touches only where its arc ends
+        out = {n: (OPEN if n in edges else STICK if c.friction == ROLLING else SLIP) for n, c in self.contacts.items()}
+        return out if y is None else {**out, **off_arc(self, t_, y, p)}
 
     def model(self, mode: dict, regime_index: int) -> ModeModel:
         key = (mode_key(mode), regime_index)
@@ -109,6 +124,7 @@ class Hybrid:
         conservative = all(pw.power == 0 for pw in powers)
         # watches
         watches, wexprs = [], []
+        parents = parent_of(self)
 
         def watch(w, e):
             e = sp.sympify(e).xreplace(zero_r)
@@ -123,9 +139,13 @@ class Hybrid:
             for dom, what, why in (c.domain(kin) if hasattr(c, "domain") else ()):    # the geometry's validity
                 watch(Watch("domain", name, what, -1, quantity=show(dom), detail=why), dom)
             st = mode[name]
+            if st == OPEN and name in self.edges:       # an arc with edges (arc_support)
+                arc_watches(self, mode, name, kin, watch, Watch)
+                continue
+            if st == OPEN and not dormant(self, mode, name):
+                kind = "arc-impact" if name in parents else "impact"      # an edge: its arc's restitution
+                watch(Watch(kind, name, f"impact at {name}", -1, quantity=f"gap of {name}"), c.gap(kin))
             if st == OPEN:
-                watch(Watch("impact", name, f"impact at {name}", -1, quantity=f"gap of {name}"),
-                      c.gap(kin))
                 continue
             if c.unilateral:
                 watch(Watch("opens", name, f"contact {name} opens", -1, quantity=str(c.N)), R(c.N))
@@ -180,7 +200,7 @@ class Hybrid:
                     friction_names.append(str(c.F))
                     fexprs.append(-c.friction.mu * R(c.N) * signs[sc.symbol])
         for name, c in self.contacts.items():
-            if isinstance(c.friction, Coulomb):
+            if isinstance(c.friction, Coulomb) and not (name in parents and mode[name] == OPEN):
                 friction_names.append(f"mu*{c.N}")
                 mu = c.friction.static if mode[name] == STICK else c.friction.kinetic
                 fexprs.append(mu * R(c.N) if mode[name] != OPEN else sp.Integer(0))
@@ -217,7 +237,7 @@ class Hybrid:
         if name not in self._contact_fns:
             c = self.contacts[name]
             kin = self.kin
-            exprs = [c.gap(kin), c.rows(kin, SLIP)[0].velocity]
+            exprs = list(arc_gap(c, kin)) if name in self.edges else [c.gap(kin), c.rows(kin, SLIP)[0].velocity]
             if kin.planar and c.friction != SMOOTH:
                 exprs.append(c.slip_velocity(kin))
             f = compile_functions(self.layout.arguments(), [self.layout.to_plain(e) for e in exprs])
@@ -227,6 +247,8 @@ class Hybrid:
     def contact_state(self, name: str, t_, y, p) -> tuple[float, float, float | None]:
         f, n = self.contact_functions(name)
         vals = [float(v) for v in f(t_, *y[:2 * self.layout.n], *p)]
+        if name in self.edges and leaving_end(self, name, t_, y, p):      # the arc's end, leaving: the edge's
+            vals[0] = abs(vals[0]) + float(self._param_value(self.contacts[name].radius, p))
         return vals[0], vals[1], (vals[2] if n > 2 else None)
 
     def relation_functions(self, mode: dict, integrated: bool = False):
@@ -247,7 +269,7 @@ class Hybrid:
                 exprs.append(red.rate_map[q.diff(t)])
             relations = dict(sol.relations)
             if integrated:
-                relations = dict(setup_mode(self.system, dict(mode)).reduction.coord_map)
+                relations = dict(setup_mode(*self._system_for(mode)).reduction.coord_map)
             rel_slots = [lay.coordinates.index(q) for q in relations]
             rel_fn = compile_functions(lay.arguments(), [lay.to_plain(v) for v in relations.values()])
             rate_fn = compile_functions(lay.arguments(), [lay.to_plain(e) for e in exprs])

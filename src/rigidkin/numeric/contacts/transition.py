@@ -15,6 +15,7 @@ import numpy as np
 from ...model.constraints import SMOOTH, Coulomb
 from ..result import Event
 from ..rhs import SimulationError
+from .arc_handover import ARC_KINDS, arc_transition
 from .impact import impact, impact_numbers, mode_after
 from .modes import Hybrid
 from .slip3d import SLOW, SPEED, contact_of, nudge, start_direction
@@ -105,13 +106,8 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
                                    "coordinates of their own.")
         exc.stop_reason = "slack"
         raise exc
-    elif w.kind == "arc":          # the contact point reaches the end of its profile's arc (model.profiles)
-        exc = SimulationError(f"the contact point of {w.name} reaches the end of its profile's arc: the edge meets "
-                              "the surface, and the model has no contact there.", where=hyb.system.name,
-                              hint="To follow the motion beyond, model the edge (or flat face) as a contact of "
-                                   "its own.")
-        exc.stop_reason = "arc-end"
-        raise exc
+    elif w.kind in ARC_KINDS:      # a profile's arc ends, comes back or strikes (model.profiles, arc_handover)
+        return arc_transition(hyb, model, w, t_, y, p, e_of, rest_speed, transition, _current_signs)
     else:  # "reverses"
         turned = contact_of(w.name)     # a 3D slip direction past a diagonal: the other tangent is the reference
         forced = _current_signs(hyb, model, without=(w.name,) + ((turned,) if turned else ()))

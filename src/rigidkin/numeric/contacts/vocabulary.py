@@ -28,7 +28,9 @@ def describe_mode(system, mode: dict) -> str:
     """``A open, B closed (smooth)``: the contacts' states in words."""
     words = []
     for name, st in sorted(mode.items()):
-        c = system.constraints[name]
+        c = system.constraints.get(name)
+        if c is None or (st == OPEN and getattr(c, "edge_of", None)):
+            continue            # an edge at the end of an arc (model.arc_edges) is told only while it touches
         if st == OPEN:
             words.append(f"{name} open")
         elif st == STICK:
