@@ -1,13 +1,49 @@
-"""Test helpers: numeric comparison of expressions at random states and parameter values."""
+"""Test helpers: numeric comparison of expressions at random states and parameter values; the command line
+run in a process of its own."""
 
 from __future__ import annotations
 
+import os
 import random
+import subprocess
+import sys
+from pathlib import Path
 
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 t = dynamicsymbols._t
+SRC = str(Path(__file__).resolve().parents[1] / "src")      # this tree's rigidkin, not an installed copy
+
+
+def rigidkin_env(base=None, **extra) -> dict:
+    """The environment of a child process that imports this tree's rigidkin: ``base`` (default: this
+    process's environment) with ``PYTHONPATH`` set to src, and ``extra``."""
+    env = dict(os.environ if base is None else base, PYTHONPATH=SRC)
+    env.update(extra)
+    return env
+
+
+def benchmark_models():
+    """benchmarks/models.py (the four-bar, the Kane chain ... that the benchmarks time): one copy of each
+    model for the benchmarks and the tests."""
+    import importlib.util
+
+    name = "rigidkin_benchmark_models"
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, Path(SRC).parent / "benchmarks" / "models.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        sys.modules[name] = module
+    return sys.modules[name]
+
+
+def rigidkin_process(*args, env=None, timeout=600, text=True, **kw) -> subprocess.CompletedProcess:
+    """``python -m rigidkin ARGS`` in a process of its own (output captured unless ``stdout`` is given)."""
+    if "stdout" not in kw:
+        kw["capture_output"] = True
+    return subprocess.run([sys.executable, "-m", "rigidkin", *map(str, args)], env=rigidkin_env(env), text=text,
+                          timeout=timeout, **kw)
 
 
 def plain(expr, coords):

@@ -16,6 +16,7 @@ import warnings
 from pathlib import Path
 
 import pytest
+from helpers import rigidkin_env
 
 from rigidkin.base import cache_folder, signing, unit_cache
 from rigidkin.cli import main
@@ -24,16 +25,7 @@ from rigidkin.io import derivation_cache as dc
 from rigidkin.io.load import load_system, read_source
 from rigidkin.numeric.compiled import cache as compiled
 
-SRC = str(Path(__file__).resolve().parents[1] / "src")
 LADDER = (EXAMPLES / "ladder.toml").read_bytes()
-
-
-@pytest.fixture
-def cache(tmp_path, monkeypatch):
-    folder = tmp_path / "cache"
-    monkeypatch.setenv("RIGIDKIN_CACHE", str(folder))
-    monkeypatch.delenv("RIGIDKIN_NO_CACHE", raising=False)
-    return folder
 
 
 @pytest.fixture
@@ -232,7 +224,7 @@ def test_concurrent_runs_on_the_same_and_on_different_files(cache, problem, tmp_
         status, expected[p], _ = _run(capsys, ["solve", str(p), "--no-cache", "--format", "json"])
         assert status == 0
     assert expected[problem] != expected[other]
-    env = dict(os.environ, PYTHONPATH=SRC, RIGIDKIN_CACHE=str(cache))
+    env = rigidkin_env(RIGIDKIN_CACHE=str(cache))
     env.pop("RIGIDKIN_NO_CACHE", None)
     for _ in range(2):                                     # a fresh cache, then one full of entries
         procs = [(p, subprocess.Popen([sys.executable, "-m", "rigidkin", "solve", str(p), "--format", "json"],

@@ -3,12 +3,11 @@
 
 import csv
 import io
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import sympy as sp
+from helpers import rigidkin_process
 
 import rigidkin as rk
 from rigidkin.numeric.simulate import simulate
@@ -86,10 +85,7 @@ def test_no_inputs_no_columns():
 
 
 def _cli(*args, cwd):
-    root = Path(__file__).resolve().parents[1]
-    env = {"PYTHONPATH": str(root / "src"), "PATH": "/usr/bin:/bin"}
-    return subprocess.run([sys.executable, "-m", "rigidkin", *args], capture_output=True, text=True, cwd=cwd,
-                          env=env, timeout=600)
+    return rigidkin_process(*args, cwd=cwd, env={"PATH": "/usr/bin:/bin"})
 
 
 def test_cli_input_option(tmp_path: Path):
