@@ -38,6 +38,34 @@ def benchmark_models():
     return sys.modules[name]
 
 
+def pushed_block(unit: str = "N"):
+    """A block (2 kg) on a smooth rail along Ex, pushed by an input F (in ``unit``), from x = 0."""
+    import rigidkin as rk
+
+    s = rk.System("block")
+    m = s.parameter("m", "kg", value=2.0)
+    F = s.input("F", unit, "push along Ex")
+    x = s.coordinate("x", "block along Ex", kind="length", initial=0.0)
+    C = s.point("C", offset=x * s.inertial.x)
+    b = s.body("block", rk.shapes.PointMass(m), frame=s.inertial, at=C)
+    s.collar("rail", b, s.inertial.x, point=C)
+    s.force("push", C, F * s.inertial.x)
+    return s
+
+
+def gliding_block():
+    """A block (1 kg) gliding on a smooth rail along Ex at 1 m/s from x = 0: no input, no load along it."""
+    import rigidkin as rk
+
+    s = rk.System("free")
+    m = s.parameter("m", "kg", value=1.0)
+    x = s.coordinate("x", kind="length", initial=0.0, rate=1.0)
+    C = s.point("C", offset=x * s.inertial.x)
+    b = s.body("b", rk.shapes.PointMass(m), frame=s.inertial, at=C)
+    s.collar("rail", b, s.inertial.x, point=C)
+    return s
+
+
 def rigidkin_process(*args, env=None, timeout=600, text=True, **kw) -> subprocess.CompletedProcess:
     """``python -m rigidkin ARGS`` in a process of its own (output captured unless ``stdout`` is given)."""
     if "stdout" not in kw:

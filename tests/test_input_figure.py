@@ -3,21 +3,10 @@ with the history the equations saw (here a known push, compared with the express
 
 import numpy as np
 import sympy as sp
+from helpers import gliding_block, pushed_block
 
 import rigidkin as rk
 from rigidkin.numeric.simulate import simulate
-
-
-def _block(unit: str):
-    s = rk.System("block")
-    m = s.parameter("m", "kg", value=2.0)
-    F = s.input("F", unit, "push along Ex")
-    x = s.coordinate("x", "block along Ex", kind="length", initial=0.0)
-    C = s.point("C", offset=x * s.inertial.x)
-    b = s.body("block", rk.shapes.PointMass(m), frame=s.inertial, at=C)
-    s.collar("rail", b, s.inertial.x, point=C)
-    s.force("push", C, F * s.inertial.x)
-    return s
 
 
 def _panel(fig, ylabel):
@@ -27,7 +16,7 @@ def _panel(fig, ylabel):
 
 
 def test_the_figure_draws_each_input_with_its_history(tmp_path):
-    res = simulate(_block("N"), 2.0, {"x": 0.0}, inputs={"F": 3 * sp.cos(2 * rk.t)}, n_points=41)
+    res = simulate(pushed_block("N"), 2.0, {"x": 0.0}, inputs={"F": 3 * sp.cos(2 * rk.t)}, n_points=41)
     fig = res.plot(tmp_path / "run.png")
     assert (tmp_path / "run.png").stat().st_size > 0
     ax = _panel(fig, "inputs")
@@ -40,7 +29,7 @@ def test_the_figure_draws_each_input_with_its_history(tmp_path):
 
 
 def test_an_input_is_drawn_in_the_unit_it_was_declared_in():
-    res = simulate(_block("kN"), 1.0, {"x": 0.0}, inputs={"F": lambda tt, st: 1500.0}, n_points=11)
+    res = simulate(pushed_block("kN"), 1.0, {"x": 0.0}, inputs={"F": lambda tt, st: 1500.0}, n_points=11)
     ax = _panel(res.plot(), "inputs")
     (line,) = [ln for ln in ax.get_lines() if ln.get_label() == "F [kN]"]
     assert np.allclose(line.get_ydata() * 1000.0, res.inputs["F"])        # the equations saw newtons
@@ -50,11 +39,5 @@ def test_an_input_is_drawn_in_the_unit_it_was_declared_in():
 
 
 def test_no_inputs_no_panel():
-    s = rk.System("free")
-    m = s.parameter("m", "kg", value=1.0)
-    x = s.coordinate("x", kind="length", initial=0.0, rate=1.0)
-    C = s.point("C", offset=x * s.inertial.x)
-    b = s.body("b", rk.shapes.PointMass(m), frame=s.inertial, at=C)
-    s.collar("rail", b, s.inertial.x, point=C)
-    fig = simulate(s, 1.0, n_points=5).plot()
+    fig = simulate(gliding_block(), 1.0, n_points=5).plot()
     assert [ax.get_ylabel() for ax in fig.axes] == ["coordinates", "rates", "reactions [N, N·m]", "energy [J]"]
