@@ -38,6 +38,25 @@ def benchmark_models():
     return sys.modules[name]
 
 
+def rod_pendulum(shape=None, *, pin: bool = True, values: dict | None = None):
+    """A rod (mass m, length l; ``shape(m, l)``, default a uniform slender rod) hung from O, θ from the
+    downward vertical, under gravity g; pinned at O unless ``pin=False``; ``values`` gives m, l, g numbers.
+    Returns (system, rod, θ, its frame R, (m, l, g))."""
+    import rigidkin as rk
+
+    values = values or {}
+    s = rk.System("pendulum")
+    m, l, g = (s.parameter(n, u, value=values.get(n)) for n, u in (("m", "kg"), ("l", "m"), ("g", "m/s^2")))
+    th = s.coordinate("theta", "from the downward vertical")
+    R = s.frame("R", angle=th)
+    G = s.point("G", offset=-l / 2 * R.y)
+    rod = s.body("rod", (shape or (lambda m, l: rk.shapes.SlenderRod(m, l, axis="y")))(m, l), frame=R, at=G)
+    if pin:
+        s.pin("O", s.origin, rod)
+    s.gravity(g)
+    return s, rod, th, R, (m, l, g)
+
+
 def pushed_block(unit: str = "N"):
     """A block (2 kg) on a smooth rail along Ex, pushed by an input F (in ``unit``), from x = 0."""
     import rigidkin as rk
