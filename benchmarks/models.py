@@ -1,4 +1,5 @@
-"""Baseline models built in the benchmarks with sympy.physics.mechanics (independent of rigidkin)."""
+"""The models the benchmarks time: baselines built with sympy.physics.mechanics (independent of rigidkin) and
+rigidkin models.  The tests use the same ones (tests/helpers.py: benchmark_models), so each model is written once."""
 
 from __future__ import annotations
 
@@ -41,7 +42,7 @@ def ops_after_cse(exprs) -> int:
 
 # rigidkin models of the systems of issue 31 ---------------------------------------------------------
 def four_bar():
-    """A four-bar linkage (1 DOF, a closed loop of three uniform rods under gravity; tests' _four_bar)."""
+    """A four-bar linkage (1 DOF, a closed loop of three uniform rods under gravity; test_core_more uses it too)."""
     import rigidkin as rk
 
     s = rk.System("four-bar")

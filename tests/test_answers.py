@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import rod_pendulum
 from scipy.integrate import solve_ivp
 from sympy import acos, cos, sin, sqrt
 
@@ -166,13 +167,7 @@ def test_answer_all_chains_after():
 
 def test_event_that_never_happens():
     # released from rest at a small angle, a pendulum never reaches θ = 2
-    s = rk.System("pendulum")
-    m, l, g = s.parameter("m", "kg", value=1), s.parameter("l", "m", value=1), s.parameter("g", "m/s^2", value=9.81)
-    th = s.coordinate("theta", "from the downward vertical")
-    R = s.frame("R", angle=th)
-    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=s.point("G", offset=-l / 2 * R.y))
-    s.pin("O", s.origin, rod)
-    s.gravity(g)
+    s, rod, th, R, (m, l, g) = rod_pendulum(values={"m": 1, "l": 1, "g": 9.81})
     ev = event(s.solve(), sp.Eq(th, 2), {th: sp.Rational(1, 2), th.diff(t): 0})
     assert not ev.happens and "turning point" in ev.notes[-1]
     # and its swing ends at −1/2 by symmetry (the motion starts towards negative θ)

@@ -8,11 +8,10 @@ import importlib
 import itertools
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from helpers import rigidkin_process
 
 import rigidkin as rk
 from rigidkin.commands.common import load_system
@@ -204,8 +203,7 @@ def chain_toml(n: int) -> str:
 def test_cli_simulates_a_chain_file_past_the_limit(tmp_path):
     path = tmp_path / "chain.toml"
     path.write_text(chain_toml(SYMBOLIC_LIMIT + 3))
-    out = subprocess.run([sys.executable, "-m", "rigidkin", "simulate", str(path), "--t-end", "0.1",
-                          "--json", "--points", "21"], capture_output=True, text=True, timeout=300)
+    out = rigidkin_process("simulate", path, "--t-end", "0.1", "--json", "--points", "21", timeout=300)
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert data["reached_end"] and data["energy_drift"] < 1e-8

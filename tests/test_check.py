@@ -2,6 +2,7 @@
 
 import pytest
 import sympy as sp
+from helpers import rod_pendulum
 from sympy import cos, sin
 from sympy.physics.vector import dynamicsymbols
 
@@ -40,15 +41,7 @@ def test_collar_force_second_eom_about_O():
 
 
 def _pendulum(shape):
-    s = rk.System("pendulum")
-    m, l, g = s.parameter("m", "kg"), s.parameter("l", "m"), s.parameter("g", "m/s^2")
-    th = s.coordinate("theta", "from the downward vertical")
-    R = s.frame("R", angle=th)
-    G = s.point("G", offset=-l / 2 * R.y)
-    body = s.body("rod", shape(m, l), frame=R, at=G)
-    s.pin("O", s.origin, body)
-    s.gravity(g)
-    return s
+    return rod_pendulum(shape)[0]
 
 
 def test_a_disagreement_is_reported_with_both_expressions():

@@ -3,11 +3,10 @@ motion agree with the Python model's accelerations; answers, text, LaTeX, list, 
 
 import json
 import random
-import subprocess
-import sys
 
 import pytest
 import sympy as sp
+from helpers import rigidkin_process
 
 from rigidkin.cli import main
 from rigidkin.examples import HERE, build
@@ -196,14 +195,12 @@ def test_unknown_problem_exits_2(capsys):
 
 @pytest.mark.slow
 def test_python_dash_m(tmp_path):
-    res = subprocess.run([sys.executable, "-m", "rigidkin", "validate", str(HERE / "ladder.toml")],
-                         capture_output=True, text=True, timeout=120)
+    res = rigidkin_process("validate", HERE / "ladder.toml", timeout=120)
     assert res.returncode == 0, res.stderr
     assert "valid" in res.stdout
     bad = tmp_path / "bad.toml"
     bad.write_text("title = \n")
-    res = subprocess.run([sys.executable, "-m", "rigidkin", "validate", str(bad)],
-                         capture_output=True, text=True, timeout=120)
+    res = rigidkin_process("validate", bad, timeout=120)
     assert res.returncode == 2 and "Traceback" not in res.stderr
     assert "bad.toml, line 1" in res.stderr and "TOML syntax error" in res.stderr
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
-import sympy.physics.mechanics as me
+from helpers import benchmark_models
 
 import rigidkin as rk
 from rigidkin.examples import chain
@@ -18,14 +18,7 @@ from rigidkin.numeric.compiled import codegen
 G = 9.81
 
 
-@pytest.fixture(autouse=True)
-def _cache(tmp_path_factory, monkeypatch):
-    monkeypatch.setenv("RIGIDKIN_CACHE", str(tmp_path_factory.getbasetemp() / "rk-cache"))
-
-
-@pytest.fixture(scope="module")
-def ladder():
-    return rk.examples.build("ladder")
+pytestmark = pytest.mark.usefixtures("code_cache")      # conftest: compiled once per session
 
 
 def _ladder_closed_form(theta, dtheta, l):
@@ -72,26 +65,10 @@ def test_implicit_equals_explicit_for_the_ladder(ladder):
 
 
 def kane_chain(n: int):
-    """The same n-rod chain with sympy.physics.mechanics KanesMethod (absolute angles): (M, f, q, u, syms)."""
-    q = me.dynamicsymbols(f"q1:{n + 1}")
-    u = me.dynamicsymbols(f"u1:{n + 1}")
-    m, l, g = sp.symbols("m l g", positive=True)
-    N = me.ReferenceFrame("N")
-    O = me.Point("O")
-    O.set_vel(N, 0)
-    bodies, loads, top = [], [], O
-    for i in range(n):
-        A = N.orientnew(f"A{i}", "Axis", (q[i], N.z))
-        A.set_ang_vel(N, u[i] * N.z)
-        Gp = top.locatenew(f"G{i}", -l / 2 * A.y)
-        Gp.v2pt_theory(top, N, A)
-        bodies.append(me.RigidBody(f"rod{i}", Gp, A, m, (me.inertia(A, 0, 0, m * l ** 2 / 12), Gp)))
-        loads.append((Gp, -m * g * N.y))
-        top = top.locatenew(f"P{i}", -l * A.y)
-        top.v2pt_theory(Gp, N, A)
-    km = me.KanesMethod(N, q_ind=q, u_ind=u, kd_eqs=[qi.diff() - ui for qi, ui in zip(q, u)])
-    km.kanes_equations(bodies, loads)
-    return km.mass_matrix, km.forcing, q, u, (m, l, g)
+    """The same n-rod chain with sympy.physics.mechanics KanesMethod (absolute angles; the benchmarks'
+    model): (M, f, q, u, syms)."""
+    km, q, u, syms = benchmark_models().kane_chain(n)
+    return km.mass_matrix, km.forcing, q, u, syms
 
 
 @pytest.mark.slow

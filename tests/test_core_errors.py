@@ -2,19 +2,15 @@
 
 import pytest
 import sympy as sp
+from helpers import rod_pendulum
 
 import rigidkin as rk
 from rigidkin.base.errors import ConstraintError, ModelError
 
 
 def pendulum():
-    s = rk.System("pendulum")
-    m, l, g = s.parameter("m", "kg"), s.parameter("l", "m"), s.parameter("g", "m/s^2")
-    th = s.coordinate("theta", "from the downward vertical")
-    R = s.frame("R", angle=th)
-    G = s.point("G", offset=-l / 2 * R.y)
-    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=G)
-    s.gravity(g)
+    """The rod of helpers.rod_pendulum with no pin yet."""
+    s, rod, th, R, (m, l, g) = rod_pendulum(pin=False)
     return s, rod, th, R, l
 
 

@@ -2,7 +2,7 @@
 
 import pytest
 import sympy as sp
-from helpers import solve_accels, values_match
+from helpers import benchmark_models, solve_accels, values_match
 from sympy import cos, pi, sin, sqrt
 from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
 
@@ -163,29 +163,7 @@ def test_cable_slack_mode_drops_the_tension():
     assert sp.simplify(free.accelerations[y] + g) == 0
 
 
-def _four_bar():
-    s = rk.System("four-bar")
-    m, L1, L2, L3, d, g = (s.parameter(n, u, value=v) for n, u, v in (
-        ("m", "kg", 1), ("L1", "m", 0.3), ("L2", "m", 1.0), ("L3", "m", 0.6), ("d", "m", 0.8), ("g", "m/s^2", 9.81)))
-    th1 = s.coordinate("theta1", "crank angle from Ex, counter-clockwise", initial=1.2, rate=0)
-    th2 = s.coordinate("theta2", "coupler angle from Ex, counter-clockwise", initial=0.2)
-    th3 = s.coordinate("theta3", "rocker angle from Ex, counter-clockwise", initial=1.9)
-    F = s.inertial
-    R1, R2, R3 = (s.frame(f"R{i}", angle=a) for i, a in ((1, th1), (2, th2), (3, th3)))
-    A = s.point("A", s.origin, L1 * R1.x)
-    B2 = s.point("B2", A, L2 * R2.x)
-    D = s.point("D", s.origin, d * F.x)
-    B3 = s.point("B3", D, L3 * R3.x)
-    crank = s.body("crank", rk.shapes.SlenderRod(m, L1, axis="x"), frame=R1, at=s.point("G1", s.origin, L1 / 2 * R1.x))
-    coupler = s.body("coupler", rk.shapes.SlenderRod(m, L2, axis="x"), frame=R2, at=s.point("G2", A, L2 / 2 * R2.x))
-    rocker = s.body("rocker", rk.shapes.SlenderRod(m, L3, axis="x"), frame=R3, at=s.point("G3", D, L3 / 2 * R3.x))
-    A.body, B2.body, B3.body = crank, coupler, rocker
-    s.pin("O", s.origin, crank)
-    s.pin("A", A, coupler, crank)
-    s.pin("D", D, rocker)
-    s.pin("B", B2, coupler, rocker, point_b=B3)      # closes the loop: a nonlinear holonomic constraint
-    s.gravity(g)
-    return s
+_four_bar = benchmark_models().four_bar        # the benchmarks' four-bar: one copy of the model
 
 
 @pytest.mark.slow

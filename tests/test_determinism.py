@@ -8,18 +8,16 @@ JSON outputs, answers included, must be byte-for-byte equal.
 from __future__ import annotations
 
 import os
-import subprocess
-import sys
 
 import pytest
+from helpers import rigidkin_process
 
 SEEDS = ("0", "1", "12345")
 
 
 def solve_json(name: str, seed: str) -> bytes:
-    env = {**os.environ, "PYTHONHASHSEED": seed}
-    done = subprocess.run([sys.executable, "-m", "rigidkin", "solve", name, "--format", "json"],
-                          capture_output=True, env=env, timeout=300)
+    done = rigidkin_process("solve", name, "--format", "json", env={**os.environ, "PYTHONHASHSEED": seed},
+                            text=False, timeout=300)
     assert done.returncode == 0, done.stderr.decode()
     return done.stdout
 

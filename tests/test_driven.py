@@ -10,14 +10,12 @@ formula along the computed motion.
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import rigidkin_process
 from sympy.physics.vector import dynamicsymbols
 
 import rigidkin as rk
@@ -226,9 +224,7 @@ def test_bead_in_a_slot_of_a_turntable_2d():
 
 def test_problem_file_through_the_command_line(tmp_path):
     """The bundled problem file (a driven body in [bodies]) solved by ``python -m rigidkin solve``."""
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
-    run = subprocess.run([sys.executable, "-m", "rigidkin", "solve", "driven-shaft", "--format", "json"],
-                         capture_output=True, text=True, timeout=600, env=env, cwd=tmp_path)
+    run = rigidkin_process("solve", "driven-shaft", "--format", "json", cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     out = json.loads(run.stdout)
     theta = sp.Function("theta")(t)

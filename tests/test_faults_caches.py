@@ -12,9 +12,11 @@ import pickle
 import shutil
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import pytest
+from helpers import rigidkin_env
 
 from rigidkin.base import cache_folder, signing, unit_cache
 from rigidkin.cli import main
@@ -23,16 +25,7 @@ from rigidkin.io import derivation_cache as dc
 from rigidkin.io.load import load_system, read_source
 from rigidkin.numeric.compiled import cache as compiled
 
-SRC = str(Path(__file__).resolve().parents[1] / "src")
 LADDER = (EXAMPLES / "ladder.toml").read_bytes()
-
-
-@pytest.fixture
-def cache(tmp_path, monkeypatch):
-    folder = tmp_path / "cache"
-    monkeypatch.setenv("RIGIDKIN_CACHE", str(folder))
-    monkeypatch.delenv("RIGIDKIN_NO_CACHE", raising=False)
-    return folder
 
 
 @pytest.fixture
@@ -161,6 +154,7 @@ def test_a_cache_fault_runs_uncached_with_one_line(cache, problem, capsys, monke
     status, fresh, _ = _run(capsys, ["solve", str(problem), "--no-cache"])
     assert status == 0
     if fault == "cache is a file":
+        shutil.rmtree(cache, ignore_errors=True)        # pint's definitions may have been kept by the run above
         cache.write_text("x")
     else:
         assert _run(capsys, ["solve", str(problem)])[1] == fresh        # a cache made
@@ -185,6 +179,34 @@ def test_a_cache_fault_runs_uncached_with_one_line(cache, problem, capsys, monke
     assert "internal error" not in err
 
 
+@pytest.mark.parametrize("action", ["default", "always", "ignore", "record"])
+def test_a_cache_fault_is_one_line_in_every_command_whatever_the_warnings_filter(cache, problem, capsys, action):
+    """``default`` hid the line in a second command of the same process, ``always`` (or a thread) could say it
+    twice, a ``catch_warnings`` around the work (simulate records its RuntimeWarnings) swallowed it."""
+    cache.write_text("x")
+    with warnings.catch_warnings(record=action == "record"):
+        warnings.simplefilter("always" if action == "record" else action)
+        for argv in (["solve", str(problem)], ["solve", str(problem)], ["check", str(problem)],
+                     ["simulate", str(problem), "--t-end", "0.05", "--points", "5"]):
+            status, out, err = _run(capsys, argv)
+            lines = [x for x in err.splitlines() if "running without the cache" in x]
+            assert status == 0 and len(lines) == 1 and lines[0].startswith("rigidkin: warning: the cache at "), \
+                (argv, err)
+    assert cache.read_text() == "x"
+
+
+def test_outside_a_command_a_cache_fault_is_a_warning_once_per_run(cache):
+    cache.write_text("x")
+    cache_folder.new_run()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert dc.folder() is None and dc.folder() is None
+    assert ["running without the cache" in str(w.message) for w in caught] == [True]
+    cache_folder.new_run()
+    with pytest.warns(RuntimeWarning, match="running without the cache"):
+        dc.folder()
+
+
 def test_a_cache_folder_removed_while_running_is_no_error(cache, problem):
     derived = dc.CachedProblem(read_source(str(problem)), lambda: load_system(str(problem)))
     derived.system.solve()
@@ -202,7 +224,7 @@ def test_concurrent_runs_on_the_same_and_on_different_files(cache, problem, tmp_
         status, expected[p], _ = _run(capsys, ["solve", str(p), "--no-cache", "--format", "json"])
         assert status == 0
     assert expected[problem] != expected[other]
-    env = dict(os.environ, PYTHONPATH=SRC, RIGIDKIN_CACHE=str(cache))
+    env = rigidkin_env(RIGIDKIN_CACHE=str(cache))
     env.pop("RIGIDKIN_NO_CACHE", None)
     for _ in range(2):                                     # a fresh cache, then one full of entries
         procs = [(p, subprocess.Popen([sys.executable, "-m", "rigidkin", "solve", str(p), "--format", "json"],

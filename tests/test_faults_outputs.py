@@ -19,20 +19,14 @@ import time
 from pathlib import Path
 
 import pytest
+from helpers import rigidkin_env, rigidkin_process
 
 from rigidkin.base import outfile, tempfiles
 from rigidkin.cli import main
 from rigidkin.examples import HERE as EXAMPLES
 
-SRC = str(Path(__file__).resolve().parents[1] / "src")
 LADDER = (EXAMPLES / "ladder.toml").read_bytes()
 SIM = ["--t-end", "0.3", "--points", "31"]
-
-
-def _env(**extra) -> dict:
-    env = dict(os.environ, PYTHONPATH=SRC)
-    env.update(extra)
-    return env
 
 
 def _parts(folder: Path) -> list[Path]:
@@ -109,8 +103,8 @@ def test_dev_stdout_appended_by_the_shell_keeps_what_was_there(problem, tmp_path
     log = tmp_path / "log.csv"
     log.write_text("kept line\n")
     with open(log, "a") as f:
-        run = subprocess.run([sys.executable, "-m", "rigidkin", "simulate", str(problem), *SIM, "--csv", "/dev/stdout"],
-                             stdout=f, stderr=subprocess.PIPE, env=_env(), timeout=600)
+        run = rigidkin_process("simulate", problem, *SIM, "--csv", "/dev/stdout", stdout=f, stderr=subprocess.PIPE,
+                               text=False)
     assert run.returncode == 0, run.stderr
     text = log.read_text()
     assert text.startswith("kept line\n" + reference.decode())
@@ -159,7 +153,8 @@ def test_a_write_that_fails_leaves_the_old_report_whole(problem, tmp_path):
         sys.exit(main(["report", {str(problem)!r}, "-o", {str(old)!r}, "--no-figures", "--no-checks",
                        "--no-answers"]))
     """)
-    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=_env(), timeout=600)
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=rigidkin_env(),
+                         timeout=600)
     assert run.returncode == 2, run.stderr
     assert "cannot write the report" in run.stderr and "too large" in run.stderr.lower()
     assert old.read_bytes() == b"<html>the old report</html>\n" * 10
@@ -180,7 +175,7 @@ def test_a_signal_during_a_write_leaves_no_temporary_file(tmp_path, sig):
             time.sleep(60)
     """)
     proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, env=_env())
+                            text=True, env=rigidkin_env())
     assert proc.stdout.readline().strip() == "writing"
     assert len(_parts(tmp_path)) == 1                                      # the temporary file, while writing
     proc.send_signal(getattr(signal, sig))

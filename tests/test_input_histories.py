@@ -3,12 +3,11 @@
 
 import csv
 import io
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import sympy as sp
+from helpers import gliding_block, pushed_block, rigidkin_process
 
 import rigidkin as rk
 from rigidkin.numeric.simulate import simulate
@@ -34,16 +33,7 @@ push = { type = "force", point = "C", vector = "F*Ex" }
 """
 
 
-def block():
-    s = rk.System("block")
-    m = s.parameter("m", "kg", value=2.0)
-    F = s.input("F", "N", "push along Ex")
-    x = s.coordinate("x", "block along Ex", kind="length", initial=0.0)
-    C = s.point("C", offset=x * s.inertial.x)
-    b = s.body("block", rk.shapes.PointMass(m), frame=s.inertial, at=C)
-    s.collar("rail", b, s.inertial.x, point=C)
-    s.force("push", C, F * s.inertial.x)
-    return s
+block = pushed_block                  # helpers: F in N on a 2 kg block
 
 
 def test_input_history_and_csv_column():
@@ -73,23 +63,14 @@ def test_feedback_input_recorded_as_the_equations_saw_it():
 
 
 def test_no_inputs_no_columns():
-    s = rk.System("free")
-    m = s.parameter("m", "kg", value=1.0)
-    x = s.coordinate("x", kind="length", initial=0.0, rate=1.0)
-    C = s.point("C", offset=x * s.inertial.x)
-    b = s.body("b", rk.shapes.PointMass(m), frame=s.inertial, at=C)
-    s.collar("rail", b, s.inertial.x, point=C)
-    res = simulate(s, 1.0, n_points=5)
+    res = simulate(gliding_block(), 1.0, n_points=5)
     assert res.inputs == {}
     assert set(res.columns()) == {"t", "x", "dot(x)", "N_rail", "M_rail", "energy: T", "energy: U", "energy: E",
                                   "energy: W"}
 
 
 def _cli(*args, cwd):
-    root = Path(__file__).resolve().parents[1]
-    env = {"PYTHONPATH": str(root / "src"), "PATH": "/usr/bin:/bin"}
-    return subprocess.run([sys.executable, "-m", "rigidkin", *args], capture_output=True, text=True, cwd=cwd,
-                          env=env, timeout=600)
+    return rigidkin_process(*args, cwd=cwd, env={"PATH": "/usr/bin:/bin"})
 
 
 def test_cli_input_option(tmp_path: Path):

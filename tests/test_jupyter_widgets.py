@@ -15,16 +15,10 @@ import sys
 import numpy as np
 import pytest
 
-from rigidkin import examples
 from rigidkin.base.errors import RigidkinError
 from rigidkin.numeric.simulate import simulate
 
 T_END = 0.5
-
-
-@pytest.fixture(scope="module")
-def ladder():
-    return examples.build("ladder")
 
 
 def _bundle(obj) -> dict:

@@ -15,11 +15,6 @@ from rigidkin.numeric.state import StateLayout
 G = 9.81
 
 
-@pytest.fixture(scope="module")
-def ladder():
-    return build("ladder")
-
-
 def test_make_rhs_gives_the_card_equation(ladder):
     rhs = make_rhs(ladder, mode={"A": "slip", "B": "slip"})
     l = ladder.parameter_info["l"].value

@@ -20,14 +20,7 @@ G = 9.81
 needs_c = pytest.mark.skipif(not codegen.c_available(), reason="no C compiler")
 
 
-@pytest.fixture(autouse=True)
-def _cache(tmp_path_factory, monkeypatch):
-    monkeypatch.setenv("RIGIDKIN_CACHE", str(tmp_path_factory.getbasetemp() / "rk-cache"))
-
-
-@pytest.fixture(scope="module")
-def ladder():
-    return rk.examples.build("ladder")
+pytestmark = pytest.mark.usefixtures("code_cache")      # conftest: compiled once per session
 
 
 @pytest.fixture(scope="module")

@@ -57,14 +57,6 @@ def test_trees_refuse_what_they_cannot_hold():
 
 
 # the command ---------------------------------------------------------------------------------------
-@pytest.fixture
-def cache(tmp_path, monkeypatch):
-    folder = tmp_path / "cache"
-    monkeypatch.setenv("RIGIDKIN_CACHE", str(folder))
-    monkeypatch.delenv("RIGIDKIN_NO_CACHE", raising=False)
-    return folder
-
-
 def _sweep(capsys, out, *extra, problem="ladder"):
     rc = main(["sweep", problem, "--param", "theta=0.05:1.3:400", "--stop-at", "N_A", "-o", str(out), *extra])
     text = capsys.readouterr()

@@ -11,7 +11,6 @@ import subprocess
 import numpy as np
 import pytest
 
-import rigidkin as rk
 from rigidkin.base.errors import InputError
 from rigidkin.cli import main
 from rigidkin.numeric.compiled import codegen
@@ -29,14 +28,7 @@ needs_c = pytest.mark.skipif(not codegen.c_available(), reason="no C compiler")
 VARY = {"theta": (0.1, 1.3, 9), "l": [0.5, 1.0, 2.5, 4.0]}
 
 
-@pytest.fixture(autouse=True)
-def _cache(tmp_path_factory, monkeypatch):
-    monkeypatch.setenv("RIGIDKIN_CACHE", str(tmp_path_factory.getbasetemp() / "rk-cache"))
-
-
-@pytest.fixture(scope="module")
-def ladder():
-    return rk.examples.build("ladder")
+pytestmark = pytest.mark.usefixtures("code_cache")      # conftest: compiled once per session
 
 
 def _rows(path):

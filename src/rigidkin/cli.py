@@ -26,6 +26,7 @@ import sys
 import warnings
 
 from . import examples
+from .base import cache_folder
 from .base.errors import RigidkinError
 from .base.plaintext import AsciiStream
 from .base.textsafe import terminal_safe
@@ -136,7 +137,8 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args, argv) -> int:
     try:
-        with deadline(getattr(args, "timeout", None), hard_stop=argv is None), _safe_warnings():
+        with deadline(getattr(args, "timeout", None), hard_stop=argv is None), _safe_warnings(), \
+                cache_folder.one_command(_warning_line):
             return int(args.func(args) or EXIT_OK)
     except RigidkinError as exc:
         if args.debug:
@@ -187,15 +189,19 @@ def _safe_warnings():
     original = warnings.showwarning
 
     def show(message, category, filename, lineno, file=None, line=None):
-        text = f"rigidkin: warning: {terminal_safe(str(message), newlines=False)}\n"
-        with contextlib.suppress(OSError, ValueError):
-            (file or sys.stderr).write(text)
+        _warning_line(message, file)
 
     warnings.showwarning = show
     try:
         yield
     finally:
         warnings.showwarning = original
+
+
+def _warning_line(message, file=None) -> None:
+    """``rigidkin: warning: ...`` on stderr, one line, control characters escaped."""
+    with contextlib.suppress(OSError, ValueError):
+        (file or sys.stderr).write(f"rigidkin: warning: {terminal_safe(str(message), newlines=False)}\n")
 
 
 def _flush() -> None:

@@ -8,7 +8,9 @@ and the unit registry (:func:`rigidkin.base.units.registry`) both find their pla
 
 from __future__ import annotations
 
+import contextlib
 import os
+import threading
 import warnings
 from pathlib import Path
 
@@ -30,29 +32,56 @@ def cache_dir() -> Path:
 
 
 _FAULTS: set[str] = set()
+_SAY: list = []                 # the running command's printer of one stderr line (cli), if any
+_LOCK = threading.Lock()        # compiled batches and sweeps may meet a fault in several threads at once
 
 
 def fault(where, reason: str) -> None:
     """A cache that cannot be used (read-only, full, vanished, a folder where a file should be): one line
-    on stderr (a RuntimeWarning, once per command) and the command runs on without it."""
+    on stderr (once per command) and the command runs on without it."""
     say_once(f"the cache at {where} cannot be used ({reason}); running without the cache.", "fault")
 
 
 def new_run() -> None:
-    """A new command starts: its first cache fault is said again."""
-    _FAULTS.clear()
+    """A new run starts (Python use): its first cache fault is said again."""
+    with _LOCK:
+        _FAULTS.clear()
+
+
+@contextlib.contextmanager
+def one_command(say):
+    """A command runs: each of its cache faults is said once, by ``say(message)`` (one line on its stderr),
+    whatever the warnings filter is (``always`` would repeat a warning, ``default`` hide it in the next
+    command of the same process, a caller's ``catch_warnings`` swallow it)."""
+    with _LOCK:
+        _FAULTS.clear()
+        before = _SAY[:]
+        _SAY[:] = [say]
+    try:
+        yield
+    finally:
+        with _LOCK:
+            _SAY[:] = before
+            _FAULTS.clear()
 
 
 def say_once(message: str, kind: str | None = None) -> None:
-    """A RuntimeWarning about the cache, said once per command (:func:`new_run`; per ``kind``, else per message)."""
-    if (kind or message) in _FAULTS:
-        return
-    _FAULTS.add(kind or message)
-    warnings.warn(message, RuntimeWarning, stacklevel=3)
+    """A cache fault said once per command (:func:`one_command`, :func:`new_run`; per ``kind``, else per
+    message): by the command's printer, or outside a command as a RuntimeWarning."""
+    with _LOCK:
+        if (kind or message) in _FAULTS:
+            return
+        _FAULTS.add(kind or message)
+        say = _SAY[0] if _SAY else None
+    if say is not None:
+        say(message)
+    else:
+        warnings.warn(message, RuntimeWarning, stacklevel=3)
 
 
-def folder() -> Path | None:
-    """The entries' folder, made and checked private; None (with a warning) when it cannot be used safely."""
+def folder(quiet: bool = False) -> Path | None:
+    """The entries' folder, made and checked private; None (with a warning, unless ``quiet``: the caller says
+    nothing about it) when it cannot be used safely."""
     base = Path(os.path.realpath(cache_dir()))           # a link is judged by where it leads
     where = base / "derivations"
     try:
@@ -67,9 +96,12 @@ def folder() -> Path | None:
             if not why and os.lstat(where).st_mode & 0o077:
                 os.chmod(where, 0o700)                   # our own folder: make it private
     except OSError as exc:
-        fault(base, exc.strerror or str(exc))
+        if not quiet:
+            fault(base, exc.strerror or str(exc))
         return None
     if why:
+        if quiet:
+            return None
         if why.endswith("is not a folder"):         # a file where the folder should be: a fault, not a threat
             fault(why.removesuffix(" is not a folder"), "it is not a folder")
         else:

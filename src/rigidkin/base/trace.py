@@ -43,7 +43,7 @@ class LazyEquations(Sequence):
         return len(self._get())
 
     def __repr__(self) -> str:
-        return repr(self._items) if self._items is not None else "LazyEquations(<not computed yet>)"
+        return repr(self._get())            # printed: what a reader asks for is the equations, so they are made
 
 
 @dataclass(frozen=True)

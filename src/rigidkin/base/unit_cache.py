@@ -16,7 +16,6 @@ import json
 import os
 import shutil
 import tempfile
-import warnings
 from pathlib import Path
 
 from . import cache_folder, signing, tempfiles
@@ -31,9 +30,7 @@ def kept_folder() -> Path | None:
     """``<cache>/pint`` (private, ours), or None where the cache is off, unsafe or unusable."""
     if cache_folder.disabled_by_env():
         return None
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")     # the derivation cache says why it is off when it is used
-        where = cache_folder.folder()
+    where = cache_folder.folder(quiet=True)     # the derivation cache says why it is off when it is used
     if where is None:
         return None
     folder = where.parent / "pint"

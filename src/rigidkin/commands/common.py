@@ -8,7 +8,6 @@ from __future__ import annotations
 import threading
 from contextlib import contextmanager
 
-from ..base import cache_folder
 from ..base.errors import RigidkinError
 from ..base.textsafe import terminal_safe
 from ..base.timelimit import time_limit as limit
@@ -22,7 +21,6 @@ def source_of(args):
     what is parsed, what the caches' keys are made of."""
     source = getattr(args, "_source", None)
     if source is None:
-        cache_folder.new_run()                  # a cache fault is said once in each command
         source = read_source(args.problem)
         args._source = source
     return source

@@ -26,7 +26,8 @@ def register(sub) -> None:
                                    "time histories, a phase portrait and an animation of the motion.")
     p.add_argument("problem", help="a problem file (.toml) or a bundled example name")
     p.add_argument("-o", "--output", required=True, help="output file: .html, .md or .tex")
-    p.add_argument("--simulate", type=end_time, metavar="T", help="simulate from t = 0 to T seconds and show it")
+    p.add_argument("--simulate", type=end_time, metavar="T",
+                   help="simulate from t = 0 to T (seconds, or a time with its unit: '500 ms') and show it")
     p.add_argument("--method", default="newton-euler", help="the balance law (default newton-euler)")
     p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="state of a contact (open, slip, stick) for the derivation")

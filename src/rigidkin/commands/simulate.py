@@ -31,8 +31,10 @@ def register(sub) -> None:
                        description="Simulate a problem through its contact modes (contacts opening, impacts, "
                                    "rolling and slipping), with events located exactly.")
     p.add_argument("problem", help="a problem file or a bundled example name")
-    p.add_argument("--t-end", type=end_time, required=True, metavar="T", help="end time [s]")
-    p.add_argument("--t-start", type=start_time, default=0.0, metavar="T0", help="start time [s] (default 0)")
+    p.add_argument("--t-end", type=end_time, required=True, metavar="T",
+                   help="end time: seconds (5) or a time with its unit ('500 ms', '2 min')")
+    p.add_argument("--t-start", type=start_time, default=0.0, metavar="T0",
+                   help="start time: seconds or a time with its unit ('20 ms'; default 0)")
     p.add_argument("--set", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="parameter values; units allowed: --set \"beta=30 deg\" m=2")
     p.add_argument("--initial", nargs="+", action="extend", default=[], metavar="NAME=VALUE",

@@ -42,7 +42,8 @@ def register(sub) -> None:
                    help="fixed parameter values; units allowed: --set \"beta=30 deg\"")
     p.add_argument("--initial", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="fixed initial coordinates and rates: --initial theta=0.2 \"dot(theta)=0\"")
-    p.add_argument("--t-end", type=end_time, default=10.0, metavar="T", help="end time of every run [s] (default 10)")
+    p.add_argument("--t-end", type=end_time, default=10.0, metavar="T",
+                   help="end time of every run: seconds or a time with its unit ('500 ms'; default 10 s)")
     p.add_argument("--stop-at", nargs="+", action="extend", default=[], metavar="EVENT",
                    help="events that end a run: a reaction reaching zero (N_A) or NAME=VALUE "
                         "(default: any unilateral contact stops pushing)")

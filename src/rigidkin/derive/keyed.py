@@ -20,6 +20,7 @@ from sympy.core.function import AppliedUndef
 from sympy.physics.vector import dynamicsymbols
 
 from ..base.errors import InputError
+from ..base.printing import text
 
 t = dynamicsymbols._t
 
@@ -144,6 +145,13 @@ class Keyed(Mapping):
 
     def __repr__(self) -> str:
         return repr(self._get())
+
+    def __str__(self) -> str:
+        """What ``print`` shows: one entry a line, ``name = expression`` (computed first when it is not yet)."""
+        entries = self._get()
+        if not entries:
+            return f"{self.what}: none"
+        return "\n".join([f"{self.what}:"] + [f"  {_show(k)} = {text(v)}" for k, v in entries.items()])
 
 
 def _show(key) -> str:

@@ -39,9 +39,6 @@ class LazyMap(Keyed):
     def __init__(self, compute, what: str | None = None):
         super().__init__(compute=compute, what=what)
 
-    def __repr__(self) -> str:
-        return repr(self._data) if self._data is not None else "LazyMap(<not computed yet>)"
-
 
 class Deferred:
     """A value of a Regime computed when first read (``Regime`` replaces it by the value)."""

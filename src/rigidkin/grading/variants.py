@@ -199,6 +199,7 @@ def _at_start(system, expr):
 def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
     """Every question's numbers from the variant's own solve; one that gives none is left out, with why."""
     values = numeric_values_from(system)
+    held = _held(system)
     context = {}
     for q in spec.questions:
         try:
@@ -211,6 +212,12 @@ def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
         got = 0
         state_bound = []
         for label, expr, qty in _labelled(system, a):
+            fixed = _held_by(qty, held)
+            if fixed is not None:              # ρ = R + r while in contact: not a question
+                note = f"{q.name}: {qty.symbol} is not asked ({fixed})"
+                if note not in var.notes:
+                    var.notes.append(note)
+                continue
             num = _number(expr, values)
             where = ""
             if num is None:
@@ -236,6 +243,43 @@ def _keys(var: Variant, system, spec, base_answers, rtol) -> None:
             why = (f"its answer ({', '.join(state_bound)}) is a function of the state, not a number, and the problem "
                    "declares no start to evaluate it at") if state_bound else "its answer holds no number"
             var.left_out.append((q.name, why))
+
+
+def _held(system) -> dict:
+    """Coordinate name → (its value, the constraints that fix it), for each coordinate the constraints of the
+    problem's mode fix (the distance of centres ρ = R + r of a sphere rolling on a sphere, by the contact):
+    what no student is asked to find."""
+    try:
+        setup = system.solve().setup
+    except RigidkinError:
+        return {}
+    out = {}
+    for c in system.coordinate_info.values():
+        try:
+            e = sp.sympify(setup.scalar(c.symbol))
+        except (RigidkinError, TypeError, ValueError):
+            continue
+        if not e.has(t):
+            rate = c.symbol.diff(t)
+            by = sorted({r.constraint for r in setup.rows if sp.sympify(r.velocity).has(rate)
+                         or (r.gap is not None and sp.sympify(r.gap).has(c.symbol))})
+            out[c.name] = (e, by)
+    return out
+
+
+def _held_by(qty, held: dict) -> str | None:
+    """``ρ = R + r, fixed by the constraint P`` (``ρ̇ = 0`` for its rate) when the quantity is a coordinate, or
+    its rate, that the constraints fix."""
+    if qty.kind not in ("position", "rate"):
+        return None
+    for name, (value, by) in held.items():
+        which = (f"the constraint{'s' if len(by) > 1 else ''} {', '.join(by)}" if by else "the constraints")
+        if qty.kind == "position" and qty.coordinate is not None and getattr(qty.coordinate.func, "__name__",
+                                                                              None) == name:
+            return f"{qty.symbol} = {text(value)}, fixed by {which}"
+        if qty.kind == "rate" and f"dot({name})" in qty.names:
+            return f"{qty.symbol} = 0, fixed by {which}"
+    return None
 
 
 def _number(expr, values) -> float | None:

@@ -19,8 +19,8 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from ..base.errors import ModelError
-from ..base.units import NAMED, ONE, Dimension, unit_dimension
-from .quantities import Parameter
+from ..base.units import ONE, Dimension
+from .quantities import Parameter, declared_dimension
 from .values import _expr
 
 
@@ -75,15 +75,7 @@ class InputMethods:
         ``history`` (an expression of t and the parameters: the default of every simulation).
         """
         where = f"input {name}"
-        if unit is not None:
-            dim = unit_dimension(unit, where)
-        elif dimension is not None:
-            if dimension not in NAMED:
-                raise ModelError(f"unknown dimension '{dimension}'.", where=where,
-                                 hint=f"Use a unit (N, N*m ...) or one of: {', '.join(sorted(NAMED))}.")
-            dim = NAMED[dimension]
-        else:
-            dim = ONE
+        dim = declared_dimension(unit, dimension, where, "N, N*m ...")
         hist = None if history is None else _expr(history, where)
         if hist is not None and hist.atoms(AppliedUndef):
             raise ModelError(f"the history {hist} of an input is an expression of t and the parameters only.",

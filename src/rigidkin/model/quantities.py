@@ -12,7 +12,8 @@ from dataclasses import dataclass, field
 import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
-from ..base.units import ONE, Dimension, from_si, shown_unit, shown_value
+from ..base.errors import ModelError
+from ..base.units import NAMED, ONE, Dimension, from_si, shown_unit, shown_value, unit_dimension
 
 t = dynamicsymbols._t
 
@@ -77,3 +78,18 @@ class Coordinate:
 
     def __repr__(self) -> str:
         return f"Coordinate({self.name} [{self.kind}]: {self.sense})"
+
+
+def declared_dimension(unit, dimension, where: str, examples: str = "kg, m, N/m ...") -> Dimension:
+    """The dimension of a declared quantity: its unit's, else the named ``dimension`` ("length", a
+    :class:`~rigidkin.base.units.Dimension`), else dimensionless."""
+    if unit is not None:
+        return unit_dimension(unit, where)
+    if isinstance(dimension, Dimension):
+        return dimension
+    if dimension is not None:
+        if dimension not in NAMED:
+            raise ModelError(f"unknown dimension '{dimension}'.", where=where,
+                             hint=f"Use a unit ({examples}) or one of: {', '.join(sorted(NAMED))}.")
+        return NAMED[dimension]
+    return ONE

@@ -24,7 +24,7 @@ from .definitions import Defined, Definition
 from .definitions import define as define_quantity
 from .frames import Frame, make_reference_frame
 from .points import Point
-from .quantities import Coordinate, Parameter
+from .quantities import Coordinate, Parameter, declared_dimension
 from .shapes import Shape
 from .speeds import angular_group, quasi_coordinate, quaternion_dcm, quaternion_group
 from .surfaces import Circle, Line
@@ -107,17 +107,7 @@ class System(ConstraintMethods, LoadMethods, DriveMethods):
         (``"30 deg"``); it is stored in SI.
         """
         where = f"parameter {name}"
-        if unit is not None:
-            dim = unit_dimension(unit, where)
-        elif isinstance(dimension, Dimension):
-            dim = dimension
-        elif dimension is not None:
-            if dimension not in NAMED:
-                raise ModelError(f"unknown dimension '{dimension}'.", where=where,
-                                 hint=f"Use a unit (kg, m, N/m ...) or one of: {', '.join(sorted(NAMED))}.")
-            dim = NAMED[dimension]
-        else:
-            dim = ONE
+        dim = declared_dimension(unit, dimension, where)
         si_unit = unit if unit is not None and str(unit).strip() not in ("", "1", "-") else None
         val = None if value is None else to_si(value, si_unit, where, None if si_unit else dim)
         if positive and val is not None and val <= 0:

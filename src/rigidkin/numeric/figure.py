@@ -1,4 +1,5 @@
-"""A figure of a simulation: coordinates, rates, reactions and energy against time, events marked.
+"""A figure of a simulation: coordinates, rates, reactions, the inputs u(t) (when it had any) and energy
+against time, events marked.
 
 Each mode is a shaded band named in a legend; each event a dotted vertical line numbered at the top
 and listed under the plots.  matplotlib's Agg backend draws it, so no display is needed.
@@ -15,6 +16,7 @@ import numpy as np
 from ..base.errors import InputError
 from ..base.outfile import OutputError, check_target, writing
 from ..base.textsafe import terminal_safe
+from ..base.units import from_si
 
 _UNITS = {"angle": ("rad", "rad/s"), "length": ("m", "m/s"), "other": ("", "1/s")}
 
@@ -42,8 +44,9 @@ def plot_result(result, path=None, title: str | None = None):
     from matplotlib.figure import Figure
 
 
-    fig = Figure(figsize=(10, 11), layout="constrained")
-    axes = fig.subplots(4, 1, sharex=True)
+    inputs = dict(getattr(result, "inputs", None) or {})
+    fig = Figure(figsize=(10, 13.5 if inputs else 11), layout="constrained")
+    axes = fig.subplots(5 if inputs else 4, 1, sharex=True)
     t = result.t
     names = result.layout.names
     seg_idx = result.segment
@@ -86,7 +89,10 @@ def plot_result(result, path=None, title: str | None = None):
     lines(axes[3], e_series, "energy [J]",
           {"E = T + U": {"color": "black", "lw": 2.2, "ls": "--"},
            "E0 + W (work done on the system)": {"color": "tab:red", "lw": 1.0, "ls": "-."}})
-    axes[3].set_xlabel("t [s]")
+    if inputs:                                # the inputs u(t) as the equations saw them, in their declared units
+        lines(axes[4], [(_label(greek(k), _unit(result, k)), _in_unit(v, _unit(result, k)))
+                        for k, v in inputs.items()], "inputs")
+    axes[-1].set_xlabel("t [s]")
     if not result.reactions and not limits:
         axes[2].text(0.5, 0.5, "no reactions (every contact open)", transform=axes[2].transAxes, ha="center",
                      va="center", color="0.3")
@@ -130,6 +136,11 @@ def plot_result(result, path=None, title: str | None = None):
     return fig
 
 
+def _in_unit(si_values, unit: str):
+    """Samples held in SI shown in ``unit`` (a declared unit such as kN or N*m)."""
+    return si_values * from_si(1.0, unit) if unit else si_values
+
+
 def _series_name(result, key) -> str:
     """The history a key names: ``'theta'``, ``'dot(theta)'``, a reaction, ``'energy: E'`` (``'E'`` where no
     reaction has that name), or the sympy symbol of one."""
@@ -155,6 +166,8 @@ def _unit(result, name: str) -> str:
         return _UNITS.get(kinds.get(name[4:-1], "other"), ("", ""))[1]
     if name in result.energy or (name.startswith("energy: ") and name[8:] in result.energy):
         return "J"
+    if name in getattr(result, "inputs", {}):
+        return getattr(result, "input_units", {}).get(name, "")
     return "N or N·m" if name in result.reactions else ""
 
 
@@ -173,10 +186,11 @@ def plot_quantities(result, quantities=None, ax=None, path=None, title: str | No
         fig = ax.figure
     cols, seg_idx, t = result.columns(), result.segment, result.t
     for j, n in enumerate(names):
+        values = _in_unit(cols[n], _unit(result, n)) if n in result.inputs else cols[n]
         for s in np.unique(seg_idx):           # one line per segment: no line across a jump
             m = seg_idx == s
             lab = _label(greek(n) if not n.startswith("dot(") else f"d{greek(n[4:-1])}/dt", _unit(result, n))
-            ax.plot(t[m], cols[n][m], color=f"C{j % 10}", lw=1.4, label=lab if s == seg_idx[0] else None)
+            ax.plot(t[m], values[m], color=f"C{j % 10}", lw=1.4, label=lab if s == seg_idx[0] else None)
     units = {_unit(result, n) for n in names}
     ax.set_ylabel(f"[{units.pop()}]" if len(units) == 1 and "" not in units else "value")
     ax.set_xlabel("t [s]")

@@ -21,7 +21,9 @@ import numpy as np
 from ..base import display
 from ..base.outfile import unique_columns, write_text, writing
 from ..base.textsafe import safe_csv_cell
+from ..base.units import shown_unit
 from ..derive.keyed import Keyed, history_name
+from ..model.inputs import inputs_of
 from .figure import plot_quantities, plot_result
 from .inputs import histories as input_histories
 from .rhs import SimulationError
@@ -110,6 +112,7 @@ class SimulationResult:
     #: (a constraint or the energy balance left its tolerance: the histories end there)
     stop_reason: str = "completed"
     inputs: dict = field(default_factory=dict)   # name → the input u(t) at each sample (as the equations saw it)
+    input_units: dict = field(default_factory=dict)  # name → the unit it was declared in (the samples are SI)
 
     @property
     def reached_end(self) -> bool:
@@ -238,7 +241,8 @@ class SimulationResult:
             yield buf.getvalue()
 
     def plot(self, path=None, title: str | None = None, *, ax=None, quantities=None):
-        """A figure of coordinates, rates, reactions and energy with the events marked; saved to ``path``.
+        """A figure of coordinates, rates, reactions, energy (and the inputs u(t), where the run had any) with the
+        events marked; saved to ``path``.
 
         ``quantities`` (names such as ``'theta'``, ``'dot(theta)'``, ``'N'``, ``'E'``, or their sympy symbols)
         draws only those, in one panel; ``ax`` draws into a matplotlib Axes of the caller's figure."""
@@ -357,6 +361,7 @@ def build_result(system, layout: StateLayout, segments: list, events: list, stat
                               {c.name: c.kind for c in system.coordinate_info.values()}, limits)
     result.stop_reason = stop_reason
     result.inputs = inputs
+    result.input_units = {k: shown_unit(i.unit, i.dimension) for k, i in inputs_of(system).items() if k in inputs}
     return result
 
 
