@@ -29,7 +29,9 @@ def describe_mode(system, mode: dict) -> str:
     words = []
     for name, st in sorted(mode.items()):
         c = system.constraints[name]
-        if st == OPEN:
+        if getattr(c, "kind", "") in ("rope", "cable"):
+            words.append(f"{name} slack" if st == OPEN else f"{name} taut")
+        elif st == OPEN:
             words.append(f"{name} open")
         elif st == STICK:
             words.append(f"{name} rolling" if c.radius != 0 else f"{name} sticking")

@@ -1,0 +1,208 @@
+"""A rope or cable that goes slack, moves free, and re-tightens with a jerk.
+
+While taut a rope (:mod:`rigidkin.model.ropes`) or a cable (:class:`rigidkin.model.constraints.Cable`) has a
+velocity row and a tension T ≥ 0.  When T reaches zero it goes *slack*: the mode names it ``open``, its row is
+dropped and the bodies move free of it, while the simulation watches the rope's *gap*, the free length
+available minus the straight distance between its stations:
+
+* a cable: gap = ℓ − Σ|P_{k+1} − P_k|, with ℓ its declared length;
+* a rope of one straight segment (between two points, or from a point to a drum it is wound on):
+  gap = ℓ − L, with L the segment's length between its tangent points.  The rope stays wound on the
+  drum as it was and turns with it (the wound turns do not slip on the drum, slack or taut), so the drum
+  pays rope out or takes it in as it turns: ℓ̇ = L̇ − v_row, the rate by which the rope's no-slip row and
+  the tangent length differ (−r φ̇ for a drum of radius r turning by φ, 0 between two points).  With that
+  rate constant in the rates (ℓ̇ = c·q̇) the free length is ℓ = ℓ_s + c·(q − q_s), fixed where the rope
+  goes slack (ℓ_s = L there).  So the gap's rate is −v_row in every mode: it stays closed exactly while
+  the rope is taut, and opens only as the tension lets go.
+
+A rope over pulleys (more than one segment) going slack still stops the simulation: which segment takes
+up the slack depends on how its pulleys turn free, which the model does not follow.
+
+When the gap closes the rope re-tightens (:mod:`.jerk`): an impulse along it, by impulse–momentum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import sympy as sp
+from sympy.physics.vector import dynamicsymbols
+
+from ...base.linear import linear_form
+from ..result import Event
+from ..rhs import SimulationError, compile_functions
+from .jerk import jerk, restitution_of
+from .slip3d import nudge
+from .vocabulary import OPEN, ModeUnavailable
+
+t = dynamicsymbols._t
+
+#: a rope's watch for its gap closing (``Watch.kind``)
+TIGHTENS = "tightens"
+
+
+class CannotFollow(SimulationError):
+    """A rope goes slack where the simulation cannot follow it (stop reason ``slack``)."""
+
+    def __init__(self, message, *, where=None, hint=None):
+        super().__init__(message, where=where, hint=hint)
+        self.stop_reason = "slack"
+
+
+def is_rope(c) -> bool:
+    return getattr(c, "kind", "") in ("rope", "cable")
+
+
+def slack_gap(c, kin, coordinates):
+    """(gap expression without its constant, why not): the watched gap of rope or cable ``c`` while slack, up
+    to the constant ℓ_s − c·q_s fixed where it goes slack (a cable's gap is complete: its constant is 0 but
+    for the drift of the taut integration); or (None, the reason it cannot be followed)."""
+    if c.kind == "cable":
+        return c.rows(kin, c.states[0])[0].gap, ""
+    if len(c.stations) != 2:
+        return None, (f"rope {c.name} runs over pulleys; which of its segments takes up the slack depends on how "
+                      "the pulleys turn free, which the model does not follow")
+    L = c.length(kin, 0)
+    row = c.rows(kin, c.states[0])[0].velocity
+    rates = [q.diff(t) for q in coordinates]
+    paid = kin.simplify_expr(_signed_roots(sp.diff(L, t) - row, kin))    # ℓ̇ = L̇ − v_row: what the drums pay out
+    A, b = linear_form([paid], rates)
+    coef = [sp.sympify(a) for a in A]
+    varying = set(coordinates) | {t}
+    if not kin.is_zero(b[0]) or any(a.has(*varying) or a.has(sp.Derivative) for a in coef):
+        return None, (f"rope {c.name} pays out from its drum at the rate {paid}, which is not a constant "
+                      "combination of the rates, so its free length while slack is not a function of the "
+                      "coordinates")
+    return sum((a * q for a, q in zip(coef, coordinates)), sp.Integer(0)) - L, ""
+
+
+def _signed_roots(expr, kin):
+    """√(X²) and |X| written ±X by the sign of X in the reference configuration (at t = 0), as a rope's
+    length is (``ropes._root``): X is a length that keeps its sign while the rope is in use."""
+    expr = expr.replace(lambda e: e.is_Pow and e.exp == sp.Rational(1, 2) and e.base.is_Pow and e.base.exp == 2,
+                        lambda e: sp.Abs(e.base.base))
+    ref = kin.reference_values()
+    repl = {}
+    for a in expr.atoms(sp.Abs):
+        try:
+            val = float(a.args[0].subs(ref).subs(t, 0))
+        except (TypeError, ValueError):
+            val = 0.0
+        repl[a] = -a.args[0] if val < 0 else a.args[0]
+    return expr.xreplace(repl)
+
+
+def with_offsets(model, free: dict):
+    """``model`` with the constants ℓ_s − c·q_s of its slack ropes' gaps added to their watches."""
+    idx = [(i, free.get(w.name, 0.0)) for i, w in enumerate(model.watches) if w.kind == TIGHTENS]
+    if not idx:
+        return model
+    off = np.zeros(len(model.watches))
+    for i, v in idx:
+        off[i] = v
+    return replace(model, offsets=off)
+
+
+def _gap_functions(hyb, c):
+    cache = hyb.__dict__.setdefault("_slack_fns", {})
+    if c.name not in cache:
+        kin = hyb.kin
+        gap, why = slack_gap(c, kin, hyb.layout.coordinates)
+        if gap is None:
+            cache[c.name] = why
+        else:
+            length = c.length if c.kind == "cable" else c.length(kin, 0)
+            lay = hyb.layout
+            cache[c.name] = compile_functions(lay.arguments(), [lay.to_plain(e) for e in (gap, length)])
+    return cache[c.name]
+
+
+def goes_slack(hyb, model, w, t_, y, p, forced: dict) -> tuple[dict, int, list, str]:
+    """The mode, regime, notes and words after rope or cable ``w.name``'s tension reached zero: the rope
+    open, its gap watched from zero (its constant kept in ``hyb.free_lengths``)."""
+    c = hyb.system.constraints[w.name]
+    fns = _gap_functions(hyb, c)
+    hint = "Until then the motion is exact; a slack rope needs the ends' motions as coordinates of their own."
+    if isinstance(fns, str):
+        raise CannotFollow(f"the tension of {w.name} reaches zero: it goes slack, and {fns}.",
+                           where=hyb.system.name, hint="Until then the motion is exact.")
+    cand = {**model.mode, c.name: OPEN}
+    try:
+        hyb.solution(cand)
+    except ModeUnavailable as exc:
+        raise CannotFollow(f"the tension of {w.name} reaches zero: it goes slack, and the model cannot move "
+                           f"without it ({exc.message.split(': ', 1)[-1]})", where=hyb.system.name,
+                           hint=hint) from None
+    gap, length = (float(v) for v in fns(t_, *y[:2 * hyb.layout.n], *p))
+    hyb.free_lengths[c.name] = -gap          # the gap is zero where it goes slack
+    new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+    detail = (f"the tension {w.quantity} reaches zero: {c.kind} {c.name} goes slack and the motion goes on free "
+              f"of it (free length {length:.6g}")
+    if c.kind == "rope" and any(st.signed_radius != 0 for st in c.stations):
+        detail += "; the rope stays wound on its drum and turns with it"
+    return new_mode, k, nts, detail + ")"
+
+
+def tightens(hyb, model, w, t_, y, p, e_of: dict, rest_speed: float, forced: dict):
+    """The mode, regime, state, notes, words and numbers after slack rope ``w.name``'s gap closed: the jerk
+    (:func:`.jerk.jerk`), then taut — or still slack where it rebounds (e > 0) or would have to push."""
+    mode, name = dict(model.mode), w.name
+    c = hyb.system.constraints[name]
+    out = jerk(hyb, mode, name, t_, y, p, restitution_of(hyb, name, e_of))
+    y = out["y"]
+    y[2 * hyb.layout.n] += out["energy_change"]          # the work slot: the jerk's change of kinetic energy
+    words = (f"the gap of {name} closes: its ends moved apart along it at {-out['gap_rate_before']:.6g} → "
+             f"{-out['gap_rate_after']:.6g}, impulse {out['impulse_name']} = {out['impulse']:.6g}, kinetic energy "
+             f"change {out['energy_change']:.6g} (dissipated {out['energy_dissipated']:.6g}"
+             + (f", work of the moving end {out['work_of_moving_ends']:.6g}" if out["work_of_moving_ends"] else "")
+             + ")")
+    taut = {k: v for k, v in mode.items() if k != name}
+    notes, state = [], "taut"
+    if out["gap_rate_after"] > rest_speed:
+        state = "slack"
+        notes.append(f"{name} rebounds slack (e = {out['restitution']:g})")
+    else:
+        new_mode, k, nts = hyb.settle(taut, t_, y, p, forced=forced)
+        react = hyb.model(new_mode, k).reactions(t_, y, p)
+        scale = max(1.0, max((abs(v) for v in react.values()), default=1.0))
+        pushing = [(tn, react[str(tn)]) for tn in c.reactions() if react.get(str(tn), 0.0) < -1e-9 * scale]
+        if pushing:
+            state = "slack"
+            notes.append(f"taut, {name} would have to push ({pushing[0][0]} = {pushing[0][1]:.4g}): it stays slack")
+        else:
+            notes.extend(nts)
+    if state == "slack":
+        new_mode, k, nts = hyb.settle(mode, t_, y, p, forced=forced)
+        notes.extend(nts)
+    out["state"] = state
+    return new_mode, k, y, notes, words, out
+
+
+def rope_transition(hyb, model, w, t_, y, p, e_of: dict, rest_speed: float, forced: dict):
+    """(mode, regime, state, Event) after a rope's or cable's tension reaches zero (``slack``) or its slack gap
+    closes (``tightens``)."""
+    lay = hyb.layout
+    n = lay.n
+    before = lay.as_dict(y)
+    numbers, name = None, w.label
+    if w.kind == TIGHTENS:
+        new_mode, k, y, nts, detail, out = tightens(hyb, model, w, t_, y, p, e_of, rest_speed, forced)
+        if out["impulse"] > 0:
+            name = f"{w.label} (jerk), impulse {out['impulse_name']} = {out['impulse']:.6g}"
+        numbers = {k_: v for k_, v in out.items() if k_ != "y"}
+    else:
+        new_mode, k, nts, detail = goes_slack(hyb, model, w, t_, y, p, forced)
+    y = np.array(y, dtype=float)
+    y[:2 * n] = hyb.project_rates(new_mode, t_, y[:2 * n], p)
+    y = nudge(hyb, new_mode, t_, y, p)
+    after = lay.as_dict(y)
+    if numbers is not None:
+        numbers["velocity_jump"] = {k_: float(after[k_] - before[k_]) for k_ in before if k_.startswith("dot(")}
+    detail = "; ".join([detail, *nts])
+    ev = Event(name, w.kind, w.name, t_, before, after, model.description, hyb.model(new_mode, k).description,
+               detail, numbers)
+    return new_mode, k, y, ev
+
+
+__all__ = ["rope_transition", "tightens", "TIGHTENS", "CannotFollow", "goes_slack", "is_rope", "slack_gap", "with_offsets"]

@@ -1,0 +1,248 @@
+"""A rope or cable that goes slack moves free and re-tightens with a jerk (numeric/contacts/slack.py, jerk.py).
+
+Checked against closed forms and impulse–momentum by hand: a yo-yo whose hand moves by y_H = A sin Ωt (the string
+goes slack where T = (g + ÿ_H)/(1/m + r²/I) reaches zero, flies free on a parabola with constant spin, and jerks
+taut where the free length, paid out by the drum as it turns, equals the distance from the hand), and a pendulum
+bob on a cable swung so high that the cable goes slack (T = m v²/L + m g cos φ = 0) and jerks taut where its
+parabola meets the circle of radius L.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+import rigidkin as rk
+from rigidkin.model.ropes import Wrap
+from rigidkin.numeric.simulate import simulate
+
+M_, RR, r_, G, A_, W_ = 0.2, 0.05, 0.01, 9.81, 0.1, 15.0       # yo-yo: mass, disk radius, drum radius; hand
+I_ = 0.5 * M_ * RR**2
+Y0, TH0, WD0 = -0.5, 0.0, -50.0                                    # centre height, angle, spin at t = 0
+VY0 = A_ * W_ + r_ * WD0                                           # the taut string: ẏ − r θ̇ = ẏ_H
+
+
+def _yoyo(e=None):
+    s = rk.System("yo-yo")
+    m, R, r = s.parameter("m", "kg", value=M_), s.parameter("R", "m", value=RR), s.parameter("r", "m", value=r_)
+    g, A, W = s.parameter("g", "m/s^2", value=G), s.parameter("A", "m", value=A_), s.parameter("Omega", "rad/s", value=W_)
+    y = s.coordinate("y", "height of the centre", kind="length", initial=Y0, rate=VY0)
+    th = s.coordinate("theta", "rotation of the yo-yo, counter-clockwise", initial=TH0, rate=WD0)
+    H = s.point("H", offset=A * sp.sin(W * rk.t) * s.inertial.y)
+    s.drive("hand", s.inertial, at=H)
+    disk = s.body("yoyo", rk.shapes.Disk(m, R), frame=s.frame("D", angle=th),
+                  at=s.point("C", offset=r * s.inertial.x + y * s.inertial.y))
+    s.rope("string", [(H, "hand"), Wrap(disk, r, "ccw")], tensions=("T",))     # hangs down the drum's left side
+    s.gravity(g)
+    if e is not None:
+        s.restitution("string", e)
+    return s
+
+
+def _taut(t):
+    """The taut yo-yo by hand: m ÿ = T − m g, I θ̈ = −r T, ẏ − r θ̇ = ẏ_H give ÿ = (k/m)(g + ÿ_H) − g with
+    k = 1/(1/m + r²/I), integrated twice from the start."""
+    km = 1.0 / (1.0 + M_ * r_**2 / I_)
+    vy = VY0 + (km - 1) * G * t + km * A_ * W_ * (math.cos(W_ * t) - 1)
+    y = Y0 + VY0 * t + (km - 1) * G * t**2 / 2 + km * (A_ * math.sin(W_ * t) - A_ * W_ * t)
+    hand, vhand = A_ * math.sin(W_ * t), A_ * W_ * math.cos(W_ * t)
+    return y, vy, TH0 + (y - Y0 - hand) / r_, (vy - vhand) / r_
+
+
+def _by_hand(e=0.0):
+    """Slack instant, the state there, the re-tightening instant, and the state just after the jerk."""
+    ts = math.asin(G / (A_ * W_**2)) / W_                # T = k (g − A Ω² sin Ωt) = 0
+    ys, vs, ths, ws = _taut(ts)
+    ls = A_ * math.sin(W_ * ts) - ys                     # free length where it goes slack
+
+    def gap(t):                                          # ℓ − L: the drum pays out −r Δθ as it turns
+        tau = t - ts
+        y = ys + vs * tau - G * tau**2 / 2
+        return ls - r_ * ws * tau - (A_ * math.sin(W_ * t) - y)
+
+    grid = np.linspace(ts + 1e-4, ts + 1.0, 20001)
+    vals = [gap(t) for t in grid]
+    j = next(i for i in range(len(vals) - 1) if vals[i] > 0 >= vals[i + 1])
+    tr = brentq(gap, grid[j], grid[j + 1], xtol=1e-15)
+    vy_, w_ = vs - G * (tr - ts), ws
+    vh = A_ * W_ * math.cos(W_ * tr)
+    # impulse P up the string at the drum's left point: m Δẏ = P, I Δθ̇ = −r P, and the string's speed after:
+    # ẏ⁺ − r θ̇⁺ − ẏ_H = −e (ẏ⁻ − r θ̇⁻ − ẏ_H)
+    approach = vh - vy_ + r_ * w_
+    P = (1 + e) * approach / (1 / M_ + r_**2 / I_)
+    return dict(ts=ts, ys=ys, vs=vs, ths=ths, ws=ws, ls=ls, tr=tr, vy_before=vy_, w_before=w_, vh=vh, P=P,
+                vy_after=vy_ + P / M_, w_after=w_ - r_ * P / I_, approach=approach)
+
+
+@pytest.fixture(scope="module")
+def yoyo_run():
+    return simulate(_yoyo(), 0.44)
+
+
+def test_yoyo_goes_slack_where_the_tension_reaches_zero(yoyo_run):
+    h = _by_hand()
+    res = yoyo_run
+    assert res.stop_reason == "completed"
+    slack = [e for e in res.events if e.kind == "slack"]
+    assert slack and slack[0].name == "rope string goes slack (T = 0)"
+    ev = slack[0]
+    assert ev.t == pytest.approx(h["ts"], rel=1e-9)
+    assert ev.state["y"] == pytest.approx(h["ys"], rel=1e-8)
+    assert ev.state["dot(y)"] == pytest.approx(h["vs"], rel=1e-8)
+    assert ev.state["dot(theta)"] == pytest.approx(h["ws"], rel=1e-8)
+    assert "string slack" in ev.mode_after and f"free length {h['ls']:.6g}" in ev.detail
+
+
+def test_yoyo_flies_free_on_a_parabola_with_constant_spin(yoyo_run):
+    h = _by_hand()
+    res = yoyo_run
+    for frac in (0.25, 0.5, 0.9):
+        tt = h["ts"] + frac * (h["tr"] - h["ts"])
+        tau = tt - h["ts"]
+        st = res.at(tt)
+        assert st["y"] == pytest.approx(h["ys"] + h["vs"] * tau - G * tau**2 / 2, rel=1e-8, abs=1e-10)
+        assert st["dot(y)"] == pytest.approx(h["vs"] - G * tau, rel=1e-8, abs=1e-10)
+        assert st["dot(theta)"] == pytest.approx(h["ws"], rel=1e-9)
+        assert st["theta"] == pytest.approx(h["ths"] + h["ws"] * tau, rel=1e-8)
+    mid = np.searchsorted(res.t, h["ts"] + 0.5 * (h["tr"] - h["ts"]))
+    assert res["T"][mid] == 0.0                       # no tension while slack
+
+
+def test_yoyo_jerks_taut_by_impulse_momentum(yoyo_run):
+    h = _by_hand()
+    res = yoyo_run
+    jerks = [e for e in res.events if e.kind == "tightens"]
+    assert len(jerks) == 1
+    ev = jerks[0]
+    assert ev.t == pytest.approx(h["tr"], rel=1e-9)
+    assert ev.name.startswith("rope string re-tightens (jerk), impulse T = ")
+    num = ev.impact
+    assert num["impulse"] == pytest.approx(h["P"], rel=1e-7) and num["impulse"] > 0
+    assert ev.state["dot(y)"] == pytest.approx(h["vy_before"], rel=1e-8)
+    assert ev.after["dot(y)"] == pytest.approx(h["vy_after"], rel=1e-7)
+    assert ev.after["dot(theta)"] == pytest.approx(h["w_after"], rel=1e-7)
+    assert num["velocity_jump"]["dot(y)"] == pytest.approx(h["P"] / M_, rel=1e-7)
+    # e = 0: the string's speed after is zero; kinetic energy relative to the hand (which moves at v_H through
+    # the instant) never increases: the hand's work P v_H minus what the jerk dissipates, ½ P × approach speed
+    assert ev.after["dot(y)"] - r_ * ev.after["dot(theta)"] == pytest.approx(h["vh"], rel=1e-9)
+    dT = 0.5 * M_ * (h["vy_after"]**2 - h["vy_before"]**2) + 0.5 * I_ * (h["w_after"]**2 - h["w_before"]**2)
+    lost = 0.5 * h["P"] * h["approach"]
+    assert num["energy_change"] == pytest.approx(dT, rel=1e-7)
+    assert num["energy_dissipated"] == pytest.approx(lost, rel=1e-7) and lost > 0
+    assert num["work_of_moving_ends"] == pytest.approx(h["P"] * h["vh"], rel=1e-7)
+    rel_before = 0.5 * M_ * (h["vy_before"] - h["vh"])**2 + 0.5 * I_ * h["w_before"]**2
+    rel_after = 0.5 * M_ * (h["vy_after"] - h["vh"])**2 + 0.5 * I_ * h["w_after"]**2
+    assert rel_after <= rel_before and rel_before - rel_after == pytest.approx(lost, rel=1e-7)
+    assert "slack" not in ev.mode_after and "slack" in ev.mode_before
+    assert abs(res.energy_drift) < 1e-6                # E − W, with the hand's work and the jerk's change in W
+
+
+def test_yoyo_events_in_the_json(yoyo_run):
+    data = json.loads(yoyo_run.to_json())
+    assert data["stop_reason"] == "completed"
+    kinds = [e["kind"] for e in data["events"]]
+    assert kinds[:2] == ["slack", "tightens"]
+    jerk = data["events"][1]
+    assert jerk["impact"]["impulse_name"] == "T" and "velocity_jump" in jerk["impact"]
+    assert "goes slack" in data["events"][0]["name"] and "re-tightens (jerk)" in jerk["name"]
+
+
+def test_a_string_with_restitution_rebounds_slack():
+    """e = 0.5 (System.restitution): P = (1 + e) × approach/(1/m + r²/I), and the string leaves at e times the
+    approach speed, so it stays slack."""
+    h = _by_hand(0.5)
+    res = simulate(_yoyo(0.5), h["tr"] + 1e-3)
+    ev = next(e for e in res.events if e.kind == "tightens")
+    assert ev.t == pytest.approx(h["tr"], rel=1e-9)
+    assert ev.impact["impulse"] == pytest.approx(h["P"], rel=1e-7)
+    assert ev.after["dot(y)"] - r_ * ev.after["dot(theta)"] - h["vh"] == pytest.approx(0.5 * h["approach"], rel=1e-7)
+    assert "string slack" in ev.mode_after and "rebounds slack" in ev.detail
+    assert res.stop_reason == "completed"
+
+
+L_, MB, V0 = 1.0, 0.5, math.sqrt(3.2 * 9.81 * 1.0)        # cable pendulum: length, bob mass, speed at the bottom
+
+
+def _pendulum():
+    s = rk.System("bob on a string")
+    m, L, g = s.parameter("m", "kg", value=MB), s.parameter("L", "m", value=L_), s.parameter("g", "m/s^2", value=G)
+    rho = s.coordinate("rho", "distance of the bob from the pivot", kind="length", initial=L_)
+    phi = s.coordinate("phi", "angle of the string from the downward vertical", initial=0.0, rate=V0 / L_)
+    F = s.inertial
+    B = s.point("B", offset=rho * (sp.sin(phi) * F.x - sp.cos(phi) * F.y))
+    s.body("bob", rk.shapes.PointMass(m), frame=F, at=B)
+    s.cable("string", [s.origin, B], L, tension_name="T")
+    s.gravity(g)
+    return s
+
+
+def test_pendulum_string_goes_slack_and_jerks_taut():
+    """T = m v²/L + m g cos φ = 0 with v² = v0² − 2gL(1 − cos φ): cos φ_s = (2gL − v0²)/(3gL) = −0.4; the time
+    there t_s = ∫ L dφ / v(φ); a parabola from there until x² + y² = L²; the jerk (e = 0) takes the radial
+    velocity away: impulse m v_r, tangential velocity kept, kinetic energy lost ½ m v_r²."""
+    res = simulate(_pendulum(), 1.5)
+    assert res.stop_reason == "completed"
+    slack = next(e for e in res.events if e.kind == "slack")
+    cs = (2 * G * L_ - V0**2) / (3 * G * L_)
+    phis = math.acos(cs)
+    ts = quad(lambda f: L_ / math.sqrt(V0**2 - 2 * G * L_ * (1 - math.cos(f))), 0, phis, epsabs=1e-13)[0]
+    assert slack.t == pytest.approx(ts, rel=1e-8)
+    assert slack.state["phi"] == pytest.approx(phis, rel=1e-8)
+    vs = math.sqrt(-G * L_ * cs)
+    assert slack.state["dot(phi)"] * L_ == pytest.approx(vs, rel=1e-8)
+    x0, y0 = L_ * math.sin(phis), -L_ * math.cos(phis)
+    vx, vy = vs * math.cos(phis), vs * math.sin(phis)
+
+    def gap(tau):
+        return L_**2 - (x0 + vx * tau)**2 - (y0 + vy * tau - G * tau**2 / 2)**2
+
+    grid = np.linspace(1e-6, 2.0, 20001)
+    vals = [gap(tt) for tt in grid]
+    j = next(i for i in range(len(vals) - 1) if vals[i] > 0 >= vals[i + 1])
+    tau = brentq(gap, grid[j], grid[j + 1], xtol=1e-15)
+    jerk = next(e for e in res.events if e.kind == "tightens")
+    assert jerk.t == pytest.approx(ts + tau, rel=1e-9)
+    x, y = x0 + vx * tau, y0 + vy * tau - G * tau**2 / 2
+    v = np.array([vx, vy - G * tau])
+    n = np.array([x, y]) / L_                                # outward along the string
+    vr = float(v @ n)
+    assert vr > 0
+    vt = v - vr * n
+    phir = math.atan2(x, -y)
+    assert math.remainder(jerk.state["phi"] - phir, 2 * math.pi) == pytest.approx(0.0, abs=1e-8)
+    assert jerk.impact["impulse"] == pytest.approx(MB * vr, rel=1e-7)
+    assert jerk.after["dot(rho)"] == pytest.approx(0.0, abs=1e-9)
+    tangent = np.array([math.cos(phir), math.sin(phir)])
+    assert jerk.after["dot(phi)"] * L_ == pytest.approx(float(vt @ tangent), rel=1e-7)
+    assert jerk.impact["energy_change"] == pytest.approx(-0.5 * MB * vr**2, rel=1e-7)
+    assert jerk.impact["energy_change"] < 0 and jerk.impact["work_of_moving_ends"] == 0.0
+    assert abs(res.energy_drift) < 1e-6
+
+
+def test_a_rope_over_pulleys_still_stops_where_it_goes_slack():
+    """Two segments over a pulley with inertia: which one takes up the slack is not followed (stop "slack")."""
+    s = rk.System("atwood with a motor")
+    m1, m2, M = s.parameter("m1", "kg", value=3), s.parameter("m2", "kg", value=1), s.parameter("M", "kg", value=2)
+    R, g, c = s.parameter("R", "m", value=0.1), s.parameter("g", "m/s^2", value=9.81), \
+        s.parameter("c", "N*m/s", value=2.0)
+    y1 = s.coordinate("y1", "depth of block 1", kind="length", initial=1.0, rate=0)
+    y2 = s.coordinate("y2", "depth of block 2", kind="length", initial=1.0)
+    phi = s.coordinate("phi", "pulley rotation, counter-clockwise")
+    pulley = s.body("pulley", rk.shapes.Disk(M, R), frame=s.frame("P", angle=phi), at=s.origin)
+    ends = []
+    for nm, x, yq, mq in (("A", -R, y1, m1), ("B", R, y2, m2)):
+        P = s.point(nm, offset=x * s.inertial.x - yq * s.inertial.y)
+        s.body(f"block_{nm}", rk.shapes.PointMass(mq), frame=s.inertial, at=P)
+        ends.append(P)
+    s.pin("O", s.origin, pulley)
+    s.torque("motor", pulley, c * rk.t * s.inertial.z)
+    s.rope("rope", [ends[0], Wrap(pulley, R, "cw"), ends[1]], tensions=("T1", "T2"))
+    s.gravity(g)
+    res = simulate(s, 2.0)
+    assert res.stop_reason == "slack" and "runs over pulleys" in res.message
