@@ -182,20 +182,13 @@ def _pendulum():
     return s
 
 
-def test_pendulum_string_goes_slack_and_jerks_taut():
+def _pendulum_by_hand():
     """T = m v²/L + m g cos φ = 0 with v² = v0² − 2gL(1 − cos φ): cos φ_s = (2gL − v0²)/(3gL) = −0.4; the time
-    there t_s = ∫ L dφ / v(φ); a parabola from there until x² + y² = L²; the jerk (e = 0) takes the radial
-    velocity away: impulse m v_r, tangential velocity kept, kinetic energy lost ½ m v_r²."""
-    res = simulate(_pendulum(), 1.5)
-    assert res.stop_reason == "completed"
-    slack = next(e for e in res.events if e.kind == "slack")
+    there t_s = ∫ L dφ / v(φ); a parabola from there until x² + y² = L²: the radial speed v_r there (outward)."""
     cs = (2 * G * L_ - V0**2) / (3 * G * L_)
     phis = math.acos(cs)
     ts = quad(lambda f: L_ / math.sqrt(V0**2 - 2 * G * L_ * (1 - math.cos(f))), 0, phis, epsabs=1e-13)[0]
-    assert slack.t == pytest.approx(ts, rel=1e-8)
-    assert slack.state["phi"] == pytest.approx(phis, rel=1e-8)
     vs = math.sqrt(-G * L_ * cs)
-    assert slack.state["dot(phi)"] * L_ == pytest.approx(vs, rel=1e-8)
     x0, y0 = L_ * math.sin(phis), -L_ * math.cos(phis)
     vx, vy = vs * math.cos(phis), vs * math.sin(phis)
 
@@ -206,23 +199,96 @@ def test_pendulum_string_goes_slack_and_jerks_taut():
     vals = [gap(tt) for tt in grid]
     j = next(i for i in range(len(vals) - 1) if vals[i] > 0 >= vals[i + 1])
     tau = brentq(gap, grid[j], grid[j + 1], xtol=1e-15)
-    jerk = next(e for e in res.events if e.kind == "tightens")
-    assert jerk.t == pytest.approx(ts + tau, rel=1e-9)
     x, y = x0 + vx * tau, y0 + vy * tau - G * tau**2 / 2
     v = np.array([vx, vy - G * tau])
     n = np.array([x, y]) / L_                                # outward along the string
     vr = float(v @ n)
-    assert vr > 0
-    vt = v - vr * n
     phir = math.atan2(x, -y)
-    assert math.remainder(jerk.state["phi"] - phir, 2 * math.pi) == pytest.approx(0.0, abs=1e-8)
-    assert jerk.impact["impulse"] == pytest.approx(MB * vr, rel=1e-7)
+    vt = float((v - vr * n) @ np.array([math.cos(phir), math.sin(phir)]))
+    return dict(ts=ts, phis=phis, vs=vs, tr=ts + tau, phir=phir, vr=vr, vt=vt)
+
+
+def test_pendulum_string_goes_slack_and_jerks_taut():
+    """The jerk (e = 0) takes the radial velocity away: impulse m v_r, the tangential velocity kept, kinetic
+    energy lost ½ m v_r²."""
+    h = _pendulum_by_hand()
+    res = simulate(_pendulum(), 1.5)
+    assert res.stop_reason == "completed"
+    slack = next(e for e in res.events if e.kind == "slack")
+    assert slack.t == pytest.approx(h["ts"], rel=1e-8)
+    assert slack.state["phi"] == pytest.approx(h["phis"], rel=1e-8)
+    assert slack.state["dot(phi)"] * L_ == pytest.approx(h["vs"], rel=1e-8)
+    jerk = next(e for e in res.events if e.kind == "tightens")
+    assert jerk.t == pytest.approx(h["tr"], rel=1e-9)
+    assert h["vr"] > 0 and jerk.state["dot(rho)"] == pytest.approx(h["vr"], rel=1e-7)
+    assert math.remainder(jerk.state["phi"] - h["phir"], 2 * math.pi) == pytest.approx(0.0, abs=1e-8)
+    assert jerk.impact["impulse"] == pytest.approx(MB * h["vr"], rel=1e-7)
     assert jerk.after["dot(rho)"] == pytest.approx(0.0, abs=1e-9)
-    tangent = np.array([math.cos(phir), math.sin(phir)])
-    assert jerk.after["dot(phi)"] * L_ == pytest.approx(float(vt @ tangent), rel=1e-7)
-    assert jerk.impact["energy_change"] == pytest.approx(-0.5 * MB * vr**2, rel=1e-7)
+    assert jerk.after["dot(phi)"] * L_ == pytest.approx(h["vt"], rel=1e-7)
+    assert jerk.impact["energy_change"] == pytest.approx(-0.5 * MB * h["vr"]**2, rel=1e-7)
     assert jerk.impact["energy_change"] < 0 and jerk.impact["work_of_moving_ends"] == 0.0
     assert abs(res.energy_drift) < 1e-6
+
+
+PENDULUM_FILE = f"""
+title = "bob on a string"
+[parameters]
+m = {{ unit = "kg", value = {MB} }}
+L = {{ unit = "m", value = {L_} }}
+g = {{ unit = "m/s^2", value = {G} }}
+[coordinates]
+rho = {{ sense = "distance of the bob from the pivot", kind = "length", initial = {L_} }}
+phi = {{ sense = "angle of the string from the downward vertical", initial = 0, rate = {V0 / L_!r} }}
+[points]
+B = {{ offset = "rho*sin(phi)*Ex - rho*cos(phi)*Ey" }}
+[bodies]
+bob = {{ shape = "point_mass", mass = "m", frame = "F", at = "B" }}
+[constraints]
+string = {{ type = "cable", points = ["O", "B"], length = "L", tension_name = "T", restitution = 0.3 }}
+[loads]
+gravity = {{ type = "gravity", g = "g" }}
+"""
+
+
+def test_a_cable_with_restitution_from_a_problem_file_rebounds_and_stays_slack_to_the_end():
+    """restitution = 0.3 in the file: the radial speed after is −e v_r, the impulse m (1 + e) v_r; the cable
+    stays slack to the end and the run completes."""
+    from rigidkin.io.problem import parse_problem
+
+    system, _ = parse_problem(PENDULUM_FILE, "bob.toml")
+    assert system.restitutions == {"string": 0.3}
+    h = _pendulum_by_hand()
+    res = simulate(system, h["tr"] + 0.01)
+    assert res.stop_reason == "completed"
+    assert [e.kind for e in res.events] == ["slack", "tightens"]
+    jerk = res.events[1]
+    assert jerk.t == pytest.approx(h["tr"], rel=1e-9)
+    assert jerk.impact["impulse"] == pytest.approx(MB * 1.3 * h["vr"], rel=1e-7)
+    assert jerk.after["dot(rho)"] == pytest.approx(-0.3 * h["vr"], rel=1e-7)
+    assert "rebounds slack" in jerk.detail and "string slack" in jerk.mode_after
+    assert res.final_state["rho"] < L_
+
+
+def test_a_string_the_coordinates_keep_at_its_length_stops_where_it_goes_slack():
+    """With the bob at ρ = L fixed by the coordinates (φ alone) nothing lets the string go slack: a stop, not a
+    pendulum that goes on as if the string could push."""
+    s = rk.System("bob on a rigid string")
+    m, L, g = s.parameter("m", "kg", value=MB), s.parameter("L", "m", value=L_), s.parameter("g", "m/s^2", value=G)
+    phi = s.coordinate("phi", "angle of the string from the downward vertical", initial=0.0, rate=V0 / L_)
+    B = s.point("B", offset=L * (sp.sin(phi) * s.inertial.x - sp.cos(phi) * s.inertial.y))
+    s.body("bob", rk.shapes.PointMass(m), frame=s.inertial, at=B)
+    s.cable("string", [s.origin, B], L, tension_name="T")
+    s.gravity(g)
+    res = simulate(s, 1.5)
+    assert res.stop_reason == "slack" and "keep cable string at its length" in res.message
+    assert res.t_final == pytest.approx(_pendulum_by_hand()["ts"], rel=1e-8)
+
+
+def test_a_yoyo_that_stays_slack_to_the_end_completes():
+    h = _by_hand()
+    res = simulate(_yoyo(), 0.5 * (h["ts"] + h["tr"]))
+    assert res.stop_reason == "completed" and [e.kind for e in res.events] == ["slack"]
+    assert "string slack" in res.segments[-1].description
 
 
 def test_a_rope_over_pulleys_still_stops_where_it_goes_slack():

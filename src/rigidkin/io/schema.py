@@ -231,6 +231,7 @@ class CableSpec(Strict):
     length: Expr
     bodies: list[str] | None = None
     tension_name: Name | None = None
+    restitution: Expr | None = None       # e of its jerk as it re-tightens after going slack (default 0)
     description: str = ""
 
 
@@ -250,6 +251,7 @@ class RopeSpec(Strict):
     type: Literal["rope"]
     path: list[Name | WrapSpec] = Field(min_length=2)
     tensions: list[Name] | None = None
+    restitution: Expr | None = None       # e of its jerk as it re-tightens after going slack (default 0)
     description: str = ""
 
 

@@ -109,11 +109,14 @@ def _gap_functions(hyb, c):
     if c.name not in cache:
         kin = hyb.kin
         gap, why = slack_gap(c, kin, hyb.layout.coordinates)
-        if gap is None:
+        lay = hyb.layout
+        if gap is not None and not (lay.to_plain(gap).free_symbols - set(lay.parameter_symbols)):
+            cache[c.name] = (f"the coordinates keep {c.kind} {c.name} at its length (its gap {gap} does not change), "
+                             "so nothing can move while it is slack")
+        elif gap is None:
             cache[c.name] = why
         else:
             length = c.length if c.kind == "cable" else c.length(kin, 0)
-            lay = hyb.layout
             cache[c.name] = compile_functions(lay.arguments(), [lay.to_plain(e) for e in (gap, length)])
     return cache[c.name]
 
@@ -126,7 +129,7 @@ def goes_slack(hyb, model, w, t_, y, p, forced: dict) -> tuple[dict, int, list, 
     hint = "Until then the motion is exact; a slack rope needs the ends' motions as coordinates of their own."
     if isinstance(fns, str):
         raise CannotFollow(f"the tension of {w.name} reaches zero: it goes slack, and {fns}.",
-                           where=hyb.system.name, hint="Until then the motion is exact.")
+                           where=hyb.system.name, hint=hint)
     cand = {**model.mode, c.name: OPEN}
     try:
         hyb.solution(cand)
