@@ -31,7 +31,8 @@ VY0 = A_ * W_ + r_ * WD0                                           # the taut st
 def _yoyo(e=None):
     s = rk.System("yo-yo")
     m, R, r = s.parameter("m", "kg", value=M_), s.parameter("R", "m", value=RR), s.parameter("r", "m", value=r_)
-    g, A, W = s.parameter("g", "m/s^2", value=G), s.parameter("A", "m", value=A_), s.parameter("Omega", "rad/s", value=W_)
+    g, A = s.parameter("g", "m/s^2", value=G), s.parameter("A", "m", value=A_)
+    W = s.parameter("Omega", "rad/s", value=W_)
     y = s.coordinate("y", "height of the centre", kind="length", initial=Y0, rate=VY0)
     th = s.coordinate("theta", "rotation of the yo-yo, counter-clockwise", initial=TH0, rate=WD0)
     H = s.point("H", offset=A * sp.sin(W * rk.t) * s.inertial.y)

@@ -50,10 +50,6 @@ class CannotFollow(SimulationError):
         self.stop_reason = "slack"
 
 
-def is_rope(c) -> bool:
-    return getattr(c, "kind", "") in ("rope", "cable")
-
-
 def slack_gap(c, kin, coordinates):
     """(gap expression without its constant, why not): the watched gap of rope or cable ``c`` while slack, up
     to the constant ℓ_s − c·q_s fixed where it goes slack (a cable's gap is complete: its constant is 0 but
@@ -111,8 +107,8 @@ def _gap_functions(hyb, c):
         gap, why = slack_gap(c, kin, hyb.layout.coordinates)
         lay = hyb.layout
         if gap is not None and not (lay.to_plain(gap).free_symbols - set(lay.parameter_symbols)):
-            cache[c.name] = (f"the coordinates keep {c.kind} {c.name} at its length (its gap {gap} does not change), "
-                             "so nothing can move while it is slack")
+            cache[c.name] = (f"the coordinates keep {c.kind} {c.name} at its length (its gap cannot change), so "
+                             "nothing moves differently while it is slack")
         elif gap is None:
             cache[c.name] = why
         else:
@@ -138,7 +134,7 @@ def goes_slack(hyb, model, w, t_, y, p, forced: dict) -> tuple[dict, int, list, 
                            f"without it ({exc.message.split(': ', 1)[-1]})", where=hyb.system.name,
                            hint=hint) from None
     gap, length = (float(v) for v in fns(t_, *y[:2 * hyb.layout.n], *p))
-    hyb.free_lengths[c.name] = -gap          # the gap is zero where it goes slack
+    hyb.free_lengths[c.name] = -gap          # ℓ_s − c·q_s: the gap is zero where it goes slack
     new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
     detail = (f"the tension {w.quantity} reaches zero: {c.kind} {c.name} goes slack and the motion goes on free "
               f"of it (free length {length:.6g}")
@@ -208,4 +204,4 @@ def rope_transition(hyb, model, w, t_, y, p, e_of: dict, rest_speed: float, forc
     return new_mode, k, y, ev
 
 
-__all__ = ["rope_transition", "tightens", "TIGHTENS", "CannotFollow", "goes_slack", "is_rope", "slack_gap", "with_offsets"]
+__all__ = ["TIGHTENS", "CannotFollow", "goes_slack", "rope_transition", "slack_gap", "tightens", "with_offsets"]
