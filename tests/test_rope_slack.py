@@ -231,32 +231,11 @@ def test_pendulum_string_goes_slack_and_jerks_taut():
     assert abs(res.energy_drift) < 1e-6
 
 
-PENDULUM_FILE = f"""
-title = "bob on a string"
-[parameters]
-m = {{ unit = "kg", value = {MB} }}
-L = {{ unit = "m", value = {L_} }}
-g = {{ unit = "m/s^2", value = {G} }}
-[coordinates]
-rho = {{ sense = "distance of the bob from the pivot", kind = "length", initial = {L_} }}
-phi = {{ sense = "angle of the string from the downward vertical", initial = 0, rate = {V0 / L_!r} }}
-[points]
-B = {{ offset = "rho*sin(phi)*Ex - rho*cos(phi)*Ey" }}
-[bodies]
-bob = {{ shape = "point_mass", mass = "m", frame = "F", at = "B" }}
-[constraints]
-string = {{ type = "cable", points = ["O", "B"], length = "L", tension_name = "T", restitution = 0.3 }}
-[loads]
-gravity = {{ type = "gravity", g = "g" }}
-"""
-
-
-def test_a_cable_with_restitution_from_a_problem_file_rebounds_and_stays_slack_to_the_end():
-    """restitution = 0.3 in the file: the radial speed after is −e v_r, the impulse m (1 + e) v_r; the cable
-    stays slack to the end and the run completes."""
-    from rigidkin.io.problem import parse_problem
-
-    system, _ = parse_problem(PENDULUM_FILE, "bob.toml")
+def test_a_cable_with_restitution_rebounds_and_stays_slack_to_the_end():
+    """System.restitution("string", 0.3): the radial speed after is −e v_r, the impulse m (1 + e) v_r; the
+    cable stays slack to the end and the run completes."""
+    system = _pendulum()
+    system.restitution("string", 0.3)
     assert system.restitutions == {"string": 0.3}
     h = _pendulum_by_hand()
     res = simulate(system, h["tr"] + 0.01)
@@ -268,6 +247,8 @@ def test_a_cable_with_restitution_from_a_problem_file_rebounds_and_stays_slack_t
     assert jerk.after["dot(rho)"] == pytest.approx(-0.3 * h["vr"], rel=1e-7)
     assert "rebounds slack" in jerk.detail and "string slack" in jerk.mode_after
     assert res.final_state["rho"] < L_
+    with pytest.raises(rk.ModelError, match="not a contact, rope or cable"):
+        system.restitution("bob", 0.3)
 
 
 def test_a_string_the_coordinates_keep_at_its_length_stops_where_it_goes_slack():
@@ -313,3 +294,36 @@ def test_a_rope_over_pulleys_still_stops_where_it_goes_slack():
     s.gravity(g)
     res = simulate(s, 2.0)
     assert res.stop_reason == "slack" and "runs over pulleys" in res.message
+
+
+def test_a_string_that_would_push_at_the_start_starts_slack():
+    """Hand y_H = A cos Ωt from rest: taut, T = k (g − A Ω²) < 0 at t = 0, so the string starts slack; the yo-yo
+    falls from rest, y = y0 − g t²/2 (no spin), until A cos Ωt − y = ℓ0 = A − y0; then the jerk."""
+    s = rk.System("yo-yo")
+    m, R, r = s.parameter("m", "kg", value=M_), s.parameter("R", "m", value=RR), s.parameter("r", "m", value=r_)
+    g, A = s.parameter("g", "m/s^2", value=G), s.parameter("A", "m", value=A_)
+    W = s.parameter("Omega", "rad/s", value=W_)
+    y = s.coordinate("y", "height of the centre", kind="length", initial=Y0, rate=0.0)
+    th = s.coordinate("theta", "rotation of the yo-yo, counter-clockwise", initial=0.0, rate=0.0)
+    H = s.point("H", offset=A * sp.cos(W * rk.t) * s.inertial.y)
+    s.drive("hand", s.inertial, at=H)
+    disk = s.body("yoyo", rk.shapes.Disk(m, R), frame=s.frame("D", angle=th),
+                  at=s.point("C", offset=r * s.inertial.x + y * s.inertial.y))
+    s.rope("string", [(H, "hand"), Wrap(disk, r, "ccw")], tensions=("T",))
+    s.gravity(g)
+    res = simulate(s, 0.3)
+    assert res.stop_reason == "completed" and "string slack" in res.segments[0].description
+
+    def gap(tt):
+        return (A_ - Y0) - (A_ * math.cos(W_ * tt) - (Y0 - G * tt**2 / 2))
+
+    grid = np.linspace(1e-4, 0.3, 3001)
+    j = next(i for i in range(len(grid) - 1) if gap(grid[i]) > 0 >= gap(grid[i + 1]))
+    tr = brentq(gap, grid[j], grid[j + 1], xtol=1e-15)
+    ev = res.events[0]
+    assert ev.kind == "tightens" and ev.t == pytest.approx(tr, rel=1e-9)
+    vy, vh = -G * tr, -A_ * W_ * math.sin(W_ * tr)
+    P = (vh - vy) / (1 / M_ + r_**2 / I_)
+    assert ev.impact["impulse"] == pytest.approx(P, rel=1e-7)
+    assert ev.after["dot(y)"] == pytest.approx(vy + P / M_, rel=1e-7)
+    assert ev.after["dot(theta)"] == pytest.approx(-r_ * P / I_, rel=1e-7)

@@ -231,7 +231,6 @@ class CableSpec(Strict):
     length: Expr
     bodies: list[str] | None = None
     tension_name: Name | None = None
-    restitution: Expr | None = None       # e of its jerk as it re-tightens after going slack (default 0)
     description: str = ""
 
 
@@ -251,7 +250,6 @@ class RopeSpec(Strict):
     type: Literal["rope"]
     path: list[Name | WrapSpec] = Field(min_length=2)
     tensions: list[Name] | None = None
-    restitution: Expr | None = None       # e of its jerk as it re-tightens after going slack (default 0)
     description: str = ""
 
 

@@ -117,25 +117,40 @@ def _gap_functions(hyb, c):
     return cache[c.name]
 
 
+def open_slack(hyb, mode: dict, name: str, t_, y, p, why: str = "reaches zero") -> float:
+    """Let rope or cable ``name`` go slack at the state: its gap's constant kept in ``hyb.free_lengths`` (the
+    gap is zero here); returns its free length, or CannotFollow where the model cannot follow it slack."""
+    c = hyb.system.constraints[name]
+    fns = _gap_functions(hyb, c)
+    hint = "Until then the motion is exact; a slack rope needs the ends' motions as coordinates of their own."
+    if isinstance(fns, str):
+        raise CannotFollow(f"the tension of {name} {why}: it goes slack, and {fns}.", where=hyb.system.name,
+                           hint=hint)
+    try:
+        hyb.solution({**mode, name: OPEN})
+    except ModeUnavailable as exc:
+        raise CannotFollow(f"the tension of {name} {why}: it goes slack, and the model cannot move without it "
+                           f"({exc.message.split(': ', 1)[-1]})", where=hyb.system.name, hint=hint) from None
+    gap, length = (float(v) for v in fns(t_, *y[:2 * hyb.layout.n], *p))
+    hyb.free_lengths[name] = -gap          # ℓ_s − c·q_s: the gap is zero where it goes slack
+    return length
+
+
+def pushing(hyb, mode: dict, react: dict, tol: float) -> list[tuple[float, str, str]]:
+    """(tension, its name, rope) for each taut rope or cable of ``mode`` whose tension would push (< −tol)."""
+    out = []
+    for c in hyb.system.constraints.values():
+        if c.kind in ("rope", "cable") and mode.get(c.name) != OPEN:
+            out += [(react[str(T)], str(T), c.name) for T in c.reactions() if react.get(str(T), 0.0) < -tol]
+    return sorted(out)
+
+
 def goes_slack(hyb, model, w, t_, y, p, forced: dict) -> tuple[dict, int, list, str]:
     """The mode, regime, notes and words after rope or cable ``w.name``'s tension reached zero: the rope
     open, its gap watched from zero (its constant kept in ``hyb.free_lengths``)."""
     c = hyb.system.constraints[w.name]
-    fns = _gap_functions(hyb, c)
-    hint = "Until then the motion is exact; a slack rope needs the ends' motions as coordinates of their own."
-    if isinstance(fns, str):
-        raise CannotFollow(f"the tension of {w.name} reaches zero: it goes slack, and {fns}.",
-                           where=hyb.system.name, hint=hint)
-    cand = {**model.mode, c.name: OPEN}
-    try:
-        hyb.solution(cand)
-    except ModeUnavailable as exc:
-        raise CannotFollow(f"the tension of {w.name} reaches zero: it goes slack, and the model cannot move "
-                           f"without it ({exc.message.split(': ', 1)[-1]})", where=hyb.system.name,
-                           hint=hint) from None
-    gap, length = (float(v) for v in fns(t_, *y[:2 * hyb.layout.n], *p))
-    hyb.free_lengths[c.name] = -gap          # ℓ_s − c·q_s: the gap is zero where it goes slack
-    new_mode, k, nts = hyb.settle(cand, t_, y, p, forced=forced)
+    length = open_slack(hyb, model.mode, c.name, t_, y, p)
+    new_mode, k, nts = hyb.settle({**model.mode, c.name: OPEN}, t_, y, p, forced=forced)
     detail = (f"the tension {w.quantity} reaches zero: {c.kind} {c.name} goes slack and the motion goes on free "
               f"of it (free length {length:.6g}")
     if c.kind == "rope" and any(st.signed_radius != 0 for st in c.stations):
@@ -147,7 +162,6 @@ def tightens(hyb, model, w, t_, y, p, e_of: dict, rest_speed: float, forced: dic
     """The mode, regime, state, notes, words and numbers after slack rope ``w.name``'s gap closed: the jerk
     (:func:`.jerk.jerk`), then taut — or still slack where it rebounds (e > 0) or would have to push."""
     mode, name = dict(model.mode), w.name
-    c = hyb.system.constraints[name]
     out = jerk(hyb, mode, name, t_, y, p, restitution_of(hyb, name, e_of))
     y = out["y"]
     y[2 * hyb.layout.n] += out["energy_change"]          # the work slot: the jerk's change of kinetic energy
@@ -157,24 +171,12 @@ def tightens(hyb, model, w, t_, y, p, e_of: dict, rest_speed: float, forced: dic
              + (f", work of the moving end {out['work_of_moving_ends']:.6g}" if out["work_of_moving_ends"] else "")
              + ")")
     taut = {k: v for k, v in mode.items() if k != name}
-    notes, state = [], "taut"
-    if out["gap_rate_after"] > rest_speed:
-        state = "slack"
-        notes.append(f"{name} rebounds slack (e = {out['restitution']:g})")
+    if out["gap_rate_after"] > rest_speed:              # e > 0: it leaves its length again
+        new_mode, k, notes = hyb.settle(mode, t_, y, p, forced=forced)
+        notes.insert(0, f"{name} rebounds slack (e = {out['restitution']:g})")
     else:
-        new_mode, k, nts = hyb.settle(taut, t_, y, p, forced=forced)
-        react = hyb.model(new_mode, k).reactions(t_, y, p)
-        scale = max(1.0, max((abs(v) for v in react.values()), default=1.0))
-        pushing = [(tn, react[str(tn)]) for tn in c.reactions() if react.get(str(tn), 0.0) < -1e-9 * scale]
-        if pushing:
-            state = "slack"
-            notes.append(f"taut, {name} would have to push ({pushing[0][0]} = {pushing[0][1]:.4g}): it stays slack")
-        else:
-            notes.extend(nts)
-    if state == "slack":
-        new_mode, k, nts = hyb.settle(mode, t_, y, p, forced=forced)
-        notes.extend(nts)
-    out["state"] = state
+        new_mode, k, notes = hyb.settle(taut, t_, y, p, forced=forced)   # slack again where it would push
+    out["state"] = "slack" if new_mode.get(name) == OPEN else "taut"
     return new_mode, k, y, notes, words, out
 
 
@@ -204,4 +206,5 @@ def rope_transition(hyb, model, w, t_, y, p, e_of: dict, rest_speed: float, forc
     return new_mode, k, y, ev
 
 
-__all__ = ["TIGHTENS", "CannotFollow", "goes_slack", "rope_transition", "slack_gap", "tightens", "with_offsets"]
+__all__ = ["TIGHTENS", "CannotFollow", "goes_slack", "open_slack", "pushing", "rope_transition", "slack_gap",
+           "tightens", "with_offsets"]
