@@ -327,3 +327,31 @@ def test_a_string_that_would_push_at_the_start_starts_slack():
     assert ev.impact["impulse"] == pytest.approx(P, rel=1e-7)
     assert ev.after["dot(y)"] == pytest.approx(vy + P / M_, rel=1e-7)
     assert ev.after["dot(theta)"] == pytest.approx(-r_ * P / I_, rel=1e-7)
+
+
+def test_a_jerk_while_a_contact_touches_is_refused_with_its_reason():
+    """A block on a smooth floor tied to the wall by a cable of length L and pushed by F = F1 − F0 cos ωt toward
+    the wall: slack from the start, x = L + (F1 t²/2 − F0 (1 − cos ωt)/ω²)/m, back at x = L with speed; the jerk
+    with the floor contact closed is not modelled: the run stops there, saying so."""
+    s = rk.System("tethered block")
+    m, L = s.parameter("m", "kg", value=1.0), s.parameter("L", "m", value=1.0)
+    F0, F1 = s.parameter("F0", "N", value=2.0), s.parameter("F1", "N", value=0.5)
+    w = s.parameter("w", "rad/s", value=4.0)
+    g = s.parameter("g", "m/s^2", value=G)
+    x = s.coordinate("x", "distance from the wall", kind="length", initial=1.0)
+    y = s.coordinate("y", "height above the floor", kind="length", initial=0.0)
+    B = s.point("B", offset=x * s.inertial.x + y * s.inertial.y)
+    block = s.body("block", rk.shapes.PointMass(m), frame=s.inertial, at=B)
+    s.contact("floor", block, s.line(s.origin, s.inertial.y), centre=B)
+    s.cable("tether", [s.origin, B], L, tension_name="T")
+    s.force("push", B, (F1 - F0 * sp.cos(w * rk.t)) * s.inertial.x)
+    s.gravity(g)
+    res = simulate(s, 3.0)
+
+    def back(tt):
+        return 0.5 * tt**2 / 2 - 2.0 * (1 - math.cos(4.0 * tt)) / 4.0**2        # (x − L) m
+
+    grid = np.linspace(1e-3, 3.0, 3001)
+    j = next(i for i in range(len(grid) - 1) if back(grid[i]) < 0 <= back(grid[i + 1]))
+    assert res.stop_reason == "jerk-with-contacts" and "floor" in res.message
+    assert res.t_final == pytest.approx(brentq(back, grid[j], grid[j + 1], xtol=1e-15), rel=1e-8)

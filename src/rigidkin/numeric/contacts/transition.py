@@ -3,8 +3,7 @@
 A contact opens (the state carries over), an impact resolves by one impulse problem over every
 contact closed or closing (``impact``), slipping turns into sticking if the friction needed is within
 µs N, sticking turns into slipping in the direction the friction saturates (with the contacts it holds),
-a friction direction reverses; a rope goes slack or re-tightens with a jerk (``slack``); a profile's arc
-ends (the simulation stops there).
+a friction direction reverses; a rope goes slack or a profile's arc ends (the simulation stops there).
 Each returns the Event to record; the simulator then checks the choice against the contact problem
 over every touching contact (``contact_modes.confirm``).
 """
