@@ -355,3 +355,80 @@ def test_a_jerk_while_a_contact_touches_is_refused_with_its_reason():
     j = next(i for i in range(len(grid) - 1) if back(grid[i]) < 0 <= back(grid[i + 1]))
     assert res.stop_reason == "jerk-with-contacts" and "floor" in res.message
     assert res.t_final == pytest.approx(brentq(back, grid[j], grid[j + 1], xtol=1e-15), rel=1e-8)
+
+
+def test_a_swinging_yoyo_retightens_where_the_geometry_says_and_jerks_by_impulse_momentum():
+    """The centre free in x and y (the string swings). From the state where it goes slack: a parabola with
+    constant spin; the string, fixed to the drum where it left it (the material point P_s), is taut again
+    when L + r × (the counter-clockwise angle from the tangent point Q to P_s) equals the free length L_s (the
+    tangent point from the hand by hand: |Q − C| = r, (Q − H) ⟂ (Q − C), the rope going on counter-clockwise);
+    the jerk: m Δv = −P e, I Δω = ((Q − C) × (−P e))·Ez, and (v⁺ + ω⁺ Ez × (Q − C))·e = v_H·e."""
+    s = rk.System("swinging yo-yo")
+    m, R, r = s.parameter("m", "kg", value=M_), s.parameter("R", "m", value=RR), s.parameter("r", "m", value=r_)
+    g, A = s.parameter("g", "m/s^2", value=G), s.parameter("A", "m", value=A_)
+    W = s.parameter("Omega", "rad/s", value=W_)
+    x = s.coordinate("x", "abscissa of the centre", kind="length", initial=0.05, rate=0.0)
+    y = s.coordinate("y", "height of the centre", kind="length", initial=Y0, rate=1.0)
+    th = s.coordinate("theta", "rotation of the yo-yo, counter-clockwise", initial=0.0)
+    H = s.point("H", offset=A * sp.sin(W * rk.t) * s.inertial.y)
+    s.drive("hand", s.inertial, at=H)
+    disk = s.body("yoyo", rk.shapes.Disk(m, R), frame=s.frame("D", angle=th),
+                  at=s.point("C", offset=x * s.inertial.x + y * s.inertial.y))
+    s.rope("string", [(H, "hand"), Wrap(disk, r, "ccw")], tensions=("T",))
+    s.gravity(g)
+    res = simulate(s, 0.4)
+    assert res.stop_reason == "completed"
+    slack, jerk = res.events_of("slack")[0], res.events_of("tightens")[0]
+    st, ts = slack.state, slack.t
+
+    def free(tt):                                   # parabola, constant spin
+        tau = tt - ts
+        return (np.array([st["x"] + st["dot(x)"] * tau, st["y"] + st["dot(y)"] * tau - G * tau**2 / 2]),
+                st["theta"] + st["dot(theta)"] * tau)
+
+    def tangent(tt, c):                             # (Q, its angle about C, L) from the hand at tt
+        h = np.array([0.0, A_ * math.sin(W_ * tt)])
+        d = h - c
+        beta, half = math.atan2(d[1], d[0]), math.acos(r_ / np.linalg.norm(d))
+        for alpha in (beta + half, beta - half):
+            q = c + r_ * np.array([math.cos(alpha), math.sin(alpha)])
+            if (q - h) @ np.array([-math.sin(alpha), math.cos(alpha)]) > 0:     # goes on counter-clockwise
+                return q, alpha, float(np.linalg.norm(q - h))
+        raise AssertionError("no tangent")
+
+    c_s, th_s = free(ts)
+    _, alpha_s, L_s = tangent(ts, c_s)
+
+    def gap(tt):
+        c, th_ = free(tt)
+        _, alpha, L = tangent(tt, c)
+        turn = (th_ - th_s) - math.remainder(alpha - alpha_s, 2 * math.pi)
+        return L_s - (L + r_ * turn)
+
+    grid = np.linspace(ts + 1e-4, 0.4, 4001)
+    j = next(i for i in range(len(grid) - 1) if gap(grid[i]) > 0 >= gap(grid[i + 1]))
+    tr = brentq(gap, grid[j], grid[j + 1], xtol=1e-15)
+    assert jerk.t == pytest.approx(tr, rel=1e-8)
+    mid = 0.5 * (ts + tr)
+    c_mid, th_mid = free(mid)
+    assert [res.at(mid)["x"], res.at(mid)["y"], res.at(mid)["theta"]] == pytest.approx([*c_mid, th_mid], rel=1e-8)
+    b = jerk.state
+    c, _ = free(jerk.t)
+    q, _, L = tangent(jerk.t, c)
+    e = (q - np.array([0.0, A_ * math.sin(W_ * jerk.t)])) / L
+    v, w = np.array([b["dot(x)"], b["dot(y)"]]), b["dot(theta)"]
+    arm = q - c
+    vh = np.array([0.0, A_ * W_ * math.cos(W_ * jerk.t)])
+
+    def rim_along(v_, w_):
+        return float((v_ + w_ * np.array([-arm[1], arm[0]])) @ e)
+
+    cross = arm[0] * (-e[1]) - arm[1] * (-e[0])                  # ((Q − C) × (−e))·Ez per unit impulse
+    dv_dP, dw_dP = -e / M_, cross / I_
+    P = (vh @ e - rim_along(v, w)) / (rim_along(dv_dP, dw_dP))
+    assert P > 0 and jerk.impact["impulse"] == pytest.approx(P, rel=1e-6)
+    assert [jerk.after["dot(x)"], jerk.after["dot(y)"], jerk.after["dot(theta)"]] == pytest.approx(
+        [*(v + P * dv_dP), w + P * dw_dP], rel=1e-6, abs=1e-9)
+    rel_before = 0.5 * M_ * float((v - vh) @ (v - vh)) + 0.5 * I_ * w**2
+    v2, w2 = v + P * dv_dP, w + P * dw_dP
+    assert 0.5 * M_ * float((v2 - vh) @ (v2 - vh)) + 0.5 * I_ * w2**2 < rel_before

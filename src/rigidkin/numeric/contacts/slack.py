@@ -9,10 +9,10 @@ available minus the straight distance between its stations:
 * a rope of one straight segment (between two points, or from a point to a drum it is wound on):
   gap = ℓ − L, with L the segment's length between its tangent points.  The rope stays wound on the
   drum as it was and turns with it (the wound turns do not slip on the drum, slack or taut), so the drum
-  pays rope out or takes it in as it turns: ℓ̇ = L̇ − v_row, the rate by which the rope's no-slip row and
-  the tangent length differ (−r φ̇ for a drum of radius r turning by φ, 0 between two points).  With that
-  rate constant in the rates (ℓ̇ = c·q̇) the free length is ℓ = ℓ_s + c·(q − q_s), fixed where the rope
-  goes slack (ℓ_s = L there).  So the gap's rate is −v_row in every mode: it stays closed exactly while
+  pays rope out or takes it in as it turns relative to the rope's direction: ℓ̇ = L̇ − v_row, the rate by
+  which the rope's no-slip row and the tangent length differ (−r(φ̇ − ψ̇) for a drum of radius r turning
+  by φ, ψ the rope's direction; 0 between two points).  The free length is ℓ = ℓ_s + that change, with ℓ_s
+  = L where the rope goes slack.  So the gap's rate is −v_row in every mode: it stays closed exactly while
   the rope is taut, and opens only as the tension lets go.
 
 A rope over pulleys (more than one segment) going slack still stops the simulation: which segment takes
@@ -52,41 +52,45 @@ class CannotFollow(SimulationError):
 
 def slack_gap(c, kin, coordinates):
     """(gap expression without its constant, why not): the watched gap of rope or cable ``c`` while slack, up
-    to the constant ℓ_s − c·q_s fixed where it goes slack (a cable's gap is complete: its constant is 0 but
-    for the drift of the taut integration); or (None, the reason it cannot be followed)."""
+    to the constant fixed where it goes slack (a cable's gap is complete: its constant is 0 but for the drift
+    of the taut integration); or (None, the reason it cannot be followed).
+
+    A rope of one segment with signed radii a, b at its ends (0 at a point), turning angles φ_i, φ_j of the
+    bodies there and ψ the direction angle of the segment's normal n: the rope moves with each drum's rim
+    where it leaves it, so the free length changes by ℓ̇ = a(φ̇_i − ψ̇) − b(φ̇_j − ψ̇) (the turn of the drum
+    relative to the rope's direction pays rope out or winds it in), and the gap is a φ_i − b φ_j + (b − a) ψ − L
+    plus a constant.  ψ is measured from n in the reference configuration (its ±π cut opposite to it)."""
     if c.kind == "cable":
         return c.rows(kin, c.states[0])[0].gap, ""
     if len(c.stations) != 2:
         return None, (f"rope {c.name} runs over pulleys; which of its segments takes up the slack depends on how "
                       "the pulleys turn free, which the model does not follow")
-    L = c.length(kin, 0)
-    row = c.rows(kin, c.states[0])[0].velocity
+    ez = kin.F.z
+    e = c.segment(kin, 0)[0]
+    n = e.cross(ez)                                       # e = Ez × n
     rates = [q.diff(t) for q in coordinates]
-    paid = kin.simplify_expr(_signed_roots(sp.diff(L, t) - row, kin))    # ℓ̇ = L̇ − v_row: what the drums pay out
-    A, b = linear_form([paid], rates)
-    coef = [sp.sympify(a) for a in A]
-    varying = set(coordinates) | {t}
-    if not kin.is_zero(b[0]) or any(a.has(*varying) or a.has(sp.Derivative) for a in coef):
-        return None, (f"rope {c.name} pays out from its drum at the rate {paid}, which is not a constant "
-                      "combination of the rates, so its free length while slack is not a function of the "
-                      "coordinates")
-    return sum((a * q for a, q in zip(coef, coordinates)), sp.Integer(0)) - L, ""
-
-
-def _signed_roots(expr, kin):
-    """√(X²) and |X| written ±X by the sign of X in the reference configuration (at t = 0), as a rope's
-    length is (``ropes._root``): X is a length that keeps its sign while the rope is in use."""
-    expr = expr.replace(lambda e: e.is_Pow and e.exp == sp.Rational(1, 2) and e.base.is_Pow and e.base.exp == 2,
-                        lambda e: sp.Abs(e.base.base))
-    ref = kin.reference_values()
-    repl = {}
-    for a in expr.atoms(sp.Abs):
+    out = -c.length(kin, 0)
+    for st, sign in zip(c.stations, (1, -1)):
+        if st.signed_radius == 0:
+            continue
+        A, b = linear_form([kin.omega_of(st.body).dot(ez)], rates)
+        coef = [sp.sympify(x) for x in A]
+        if not kin.is_zero(b[0]) or any(x.has(*coordinates, t, sp.Derivative) for x in coef):
+            return None, (f"the angular velocity of {st.label}, the drum of rope {c.name}, is not the rate of an "
+                          "angle of the coordinates, so the rope it pays out while slack is not followed")
+        out += sign * st.signed_radius * sum((x * q for x, q in zip(coef, coordinates)), sp.Integer(0))
+    a, b = c.stations[0].signed_radius, c.stations[1].signed_radius
+    if a != b:
+        nx, ny = kin.simplify_expr(n.dot(kin.F.x)), kin.simplify_expr(n.dot(kin.F.y))
+        ref = {**kin.reference_values(), t: 0}
         try:
-            val = float(a.args[0].subs(ref).subs(t, 0))
+            rx, ry = float(nx.subs(ref)), float(ny.subs(ref))
         except (TypeError, ValueError):
-            val = 0.0
-        repl[a] = -a.args[0] if val < 0 else a.args[0]
-    return expr.xreplace(repl)
+            rx, ry = 1.0, 0.0
+        if not (np.isfinite(rx) and np.isfinite(ry)) or rx * rx + ry * ry == 0.0:
+            rx, ry = 1.0, 0.0
+        out += (b - a) * sp.atan2(rx * ny - ry * nx, rx * nx + ry * ny)
+    return out, ""
 
 
 def with_offsets(model, free: dict):
