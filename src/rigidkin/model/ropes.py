@@ -85,15 +85,23 @@ class Rope(Constraint):
         k = self.tension_names.index(sym.name)
         return f"tension of rope {self.name} between {self.stations[k].label} and {self.stations[k + 1].label}"
 
-    def segment(self, kin, k: int) -> tuple[Vector, Vector, Vector]:
-        """(e, Q_k, Q_{k+1}): the direction and tangent points of segment k (positions from the origin)."""
+    def _span(self, kin, k: int):
         si, sj = self.stations[k], self.stations[k + 1]
         Ci, Cj = kin.position(si.point), kin.position(sj.point)
         d = kin.simplify_vector(Cj - Ci)
         a, b = si.signed_radius, sj.signed_radius
-        ez = kin.F.z
         D2 = kin.simplify_expr(d.dot(d))
         L = kin.magnitude(d) if a == b else _root(kin, D2 - (a - b) ** 2)
+        return Ci, Cj, d, a, b, D2, L
+
+    def length(self, kin, k: int = 0) -> sp.Expr:
+        """L = √(|d|² − (a − b)²): the straight length of segment k between its tangent points."""
+        return self._span(kin, k)[-1]
+
+    def segment(self, kin, k: int) -> tuple[Vector, Vector, Vector]:
+        """(e, Q_k, Q_{k+1}): the direction and tangent points of segment k (positions from the origin)."""
+        Ci, Cj, d, a, b, D2, L = self._span(kin, k)
+        ez = kin.F.z
         n = kin.simplify_vector(((a - b) * d - L * ez.cross(d)) / D2)
         e = kin.simplify_vector((L * d + (a - b) * ez.cross(d)) / D2)
         return e, Ci + a * n, Cj + b * n

@@ -145,12 +145,13 @@ class ConstraintMethods(VelocityConstraintMethods):
 
     def restitution(self, contact, e) -> None:
         """The coefficient of restitution e of ``contact``'s impacts (Newton's law: the normal speed after an
-        impact is −e times the speed before), 0 ≤ e ≤ 1; a simulation uses it unless told otherwise."""
+        impact is −e times the speed before), 0 ≤ e ≤ 1; a simulation uses it unless told otherwise.  A rope's or
+        cable's e is that of its jerk as it re-tightens (default 0: it jerks taut)."""
         where = f"restitution of {contact}"
         con = self.constraints.get(contact if isinstance(contact, str) else getattr(contact, "name", None))
-        if con is None or getattr(con, "kind", "") != "contact":
-            known = [n for n, c in self.constraints.items() if getattr(c, "kind", "") == "contact"]
-            raise ModelError(f"{contact!r} is not a contact of this system.", where=where,
+        if con is None or getattr(con, "kind", "") not in ("contact", "rope", "cable"):
+            known = [n for n, c in self.constraints.items() if getattr(c, "kind", "") in ("contact", "rope", "cable")]
+            raise ModelError(f"{contact!r} is not a contact, rope or cable of this system.", where=where,
                              hint=f"Contacts: {', '.join(known) or 'none'}.")
         value = self._value(e, where, NONNEGATIVE, "coefficient of restitution")
         number = float(value.xreplace(self.parameter_values())) if value.free_symbols else float(value)

@@ -38,7 +38,7 @@ class Event:
     """Something that ended a mode: its name, time, the state before and after, and the modes."""
 
     name: str
-    kind: str                # "opens", "impact", "sticks", "slips", "reverses", "phase", "stop"
+    kind: str                # "opens", "impact", "sticks", "slips", "reverses", "slack", "tightens", "phase", "stop"
     contact: str
     t: float
     state: dict              # the state at the event (before any jump)

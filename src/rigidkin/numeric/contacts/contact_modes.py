@@ -136,10 +136,11 @@ def check(hyb, mode: dict, forced: dict, names, t_, y, p, zero: float, force_tol
 
 
 def decide(hyb, t_, y, p, proposal: dict | None = None, forced: dict | None = None, zero_tol: float = 1e-9,
-           every: bool = False) -> Decision:
-    """The consistent mode at a state (see the module docstring); ``every``: look for all solutions."""
+           every: bool = False, keep: dict | None = None) -> Decision:
+    """The consistent mode at a state (see the module docstring); ``every``: look for all solutions; ``keep``:
+    states of constraints other than contacts that every candidate keeps (a slack rope)."""
     forced = dict(forced or {})
-    base = dict(proposal or hyb.default_mode(t_, y, p))
+    base = {**(proposal or hyb.default_mode(t_, y, p)), **(keep or {})}
     scale = max(1.0, float(np.max(np.abs(np.asarray(y)[:2 * hyb.layout.n]))))
     zero = zero_tol * scale
     names = touching(hyb, base, t_, y, p, zero)
@@ -242,6 +243,7 @@ def confirm(hyb, model, t_, y, p) -> tuple[dict, int, str]:
     ok, _, _, why = check(hyb, mode, forced, names, t_, y, p, zero)
     if ok:
         return mode, k, ""
-    dec = decide(hyb, t_, y, p, None, {k_: v for k_, v in forced.items() if k_ not in names})
+    dec = decide(hyb, t_, y, p, None, {k_: v for k_, v in forced.items() if k_ not in names},
+                 keep={k_: v for k_, v in mode.items() if k_ not in hyb.contacts})
     return dec.mode, dec.regime, (f"the contact problem over {', '.join(names)} rejects "
                                   f"{describe_mode(hyb.system, mode)} ({why}); {describe_mode(hyb.system, dec.mode)}")

@@ -35,7 +35,8 @@ def look_ahead(t_: float, y: np.ndarray, f: np.ndarray) -> tuple[float, np.ndarr
 class Watch:
     """A quantity of the state whose zero ends a regime, and what that zero means."""
 
-    kind: str            # "opens", "impact", "sticks", "slips", "reverses", "domain" (the model's geometry ends)
+    kind: str            # "opens", "impact", "sticks", "slips", "reverses", "domain" (the model's geometry ends),
+    #                      "slack" (a rope's tension reaches zero), "tightens" (a slack rope's gap closes)
     name: str            # the contact or load
     label: str           # e.g. "contact A opens"
     direction: int       # the sign of the crossing that counts (solve_ivp's convention)
@@ -76,6 +77,7 @@ class ModeModel:
     conservative: bool
     steady: frozenset = frozenset()   # watches that cannot change: a mode at rest, no explicit time; a reaction
     #                                   identically zero (by symmetry)
+    offsets: np.ndarray | None = None  # constants added to the watches (a slack rope's gap: .slack)
 
     @property
     def regime(self):
@@ -99,7 +101,8 @@ class ModeModel:
         return dict(self._q(t_, y, p)[1])
 
     def watch_values(self, t_, y, p) -> np.ndarray:
-        return self._q(t_, y, p)[2][1:1 + len(self.watches)]
+        w = self._q(t_, y, p)[2][1:1 + len(self.watches)]
+        return w if self.offsets is None else np.asarray(w, dtype=float) + self.offsets
 
     def residuals(self, t_, y, p) -> dict:
         q = self._q(t_, y, p)[2]

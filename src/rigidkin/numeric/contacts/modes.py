@@ -36,6 +36,7 @@ from ..state import PositionConstraints, StateLayout, assemble
 from .arc_support import arc_gap, arc_watches, dormant, extended, leaving_end, off_arc, parent_of
 from .mode_model import ModeModel, Watch
 from .settle import regime_at, settle
+from .slack import TIGHTENS, slack_gap, with_offsets
 from .slip3d import expand
 from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, mode_key
 
@@ -57,6 +58,7 @@ class Hybrid:
         self._relation_fns: dict = {}
         self._depends: dict = {}
         self._kin = None
+        self.free_lengths: dict = {}    # slack rope → the constant of its gap (set where it goes slack: .slack)
 
     # derivation ------------------------------------------------------------------------------
     def solution(self, mode: dict):
@@ -101,7 +103,7 @@ class Hybrid:
         key = (mode_key(mode), regime_index)
         if key not in self._models:
             self._models[key] = self._build(dict(mode), regime_index)
-        return self._models[key]
+        return with_offsets(self._models[key], self.free_lengths)
 
     def _build(self, mode: dict, k: int) -> ModeModel:
         sol = self.solution(mode)
@@ -168,7 +170,12 @@ class Hybrid:
                     watch(Watch("slips", name, f"contact {name} starts to slip", -1, quantity="friction cone"),
                           mu**2 * N**2 - sum((f**2 for f in Fs), sp.Integer(0)))
         for c in self.system.constraints.values():      # ropes and cables can only pull (model.ropes)
-            if c.kind in ("rope", "cable") and mode.get(c.name) != OPEN:
+            if c.kind in ("rope", "cable") and mode.get(c.name) == OPEN:       # slack: its gap closing (.slack)
+                gap, _ = slack_gap(c, kin, lay.coordinates)
+                if gap is not None:
+                    watch(Watch(TIGHTENS, c.name, f"{c.kind} {c.name} re-tightens", -1,
+                                quantity=f"gap of {c.kind} {c.name}"), gap)
+            elif c.kind in ("rope", "cable"):
                 for tension in c.reactions():
                     watch(Watch("slack", c.name, f"{c.kind} {c.name} goes slack ({tension} = 0)", -1,
                                 quantity=str(tension)), R(tension))

@@ -15,6 +15,7 @@ import numpy as np
 from ...model.constraints import ROLLING, Coulomb
 from ..rhs import SimulationError
 from .mode_model import ModeModel, _Only
+from .slack import open_slack, pushing
 from .slip3d import friction_needed, slip_speed, start_direction
 from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, mode_key
 
@@ -56,8 +57,8 @@ def settle(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: floa
 
     Closed Coulomb contacts whose slip speed is zero are tried sticking; a sticking contact that
     needs more friction than µN slips in the direction the friction saturates; a unilateral
-    contact whose normal reaction would pull opens.  Contacts are never closed here (an impact
-    does that).  Returns (mode, regime, notes).
+    contact whose normal reaction would pull opens, a rope or cable whose tension would push goes slack.
+    Contacts and ropes are never closed here (an impact or a jerk does that).  Returns (mode, regime, notes).
     """
     mode, forced, notes = dict(mode), dict(forced or {}), []
     for name, c in hyb.contacts.items():      # a rolling contact held by others rolls again on its own
@@ -102,6 +103,13 @@ def settle(hyb, mode: dict, t_, y, p, forced: dict | None = None, zero_tol: floa
             mode[n] = OPEN
             forced.pop(n, None)
             notes.append(f"{n} opens: its normal reaction would pull ({react[str(hyb.contacts[n].N)]:.4g})")
+            continue
+        pushes = pushing(hyb, mode, react, force_tol * fscale)      # a rope that would push goes slack (.slack)
+        if pushes:
+            tension, tname, n = pushes[0]
+            open_slack(hyb, mode, n, t_, y, p, f"would push ({tname} = {tension:.4g})")
+            mode[n] = OPEN
+            notes.append(f"{n} goes slack: its tension would push ({tname} = {tension:.4g})")
             continue
         # the friction of held contacts is carried by the sticking ones: their limits add up
         spare = sum(float(hyb._param_value(hyb.contacts[h].friction.static, p))

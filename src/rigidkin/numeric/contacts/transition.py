@@ -3,7 +3,8 @@
 A contact opens (the state carries over), an impact resolves by one impulse problem over every
 contact closed or closing (``impact``), slipping turns into sticking if the friction needed is within
 µs N, sticking turns into slipping in the direction the friction saturates (with the contacts it holds),
-a friction direction reverses; a rope goes slack or a profile's arc ends (the simulation stops there).
+a friction direction reverses; a rope goes slack (free motion until its gap closes and it jerks taut:
+``slack``) or a profile's arc ends (its edge takes the contact: ``arc_handover``).
 Each returns the Event to record; the simulator then checks the choice against the contact problem
 over every touching contact (``contact_modes.confirm``).
 """
@@ -18,6 +19,7 @@ from ..rhs import SimulationError
 from .arc_handover import ARC_KINDS, arc_transition
 from .impact import impact, impact_numbers, mode_after
 from .modes import Hybrid
+from .slack import TIGHTENS, rope_transition
 from .slip3d import SLOW, SPEED, contact_of, nudge, start_direction
 from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable
 
@@ -99,13 +101,8 @@ def transition(hyb: Hybrid, model, w, t_, y, p, e_of, rest_speed):
         detail = (f"the friction needed at {w.name} reaches µN; it slips with slip speed "
                   f"{'positive' if w.slip_sign > 0 else 'negative'}" if w.slip_sign else
                   f"the friction needed at {w.name} reaches the friction cone µN; it slips against it")
-    elif w.kind == "slack":        # a rope's or cable's tension reaches zero (model.ropes)
-        exc = SimulationError(f"the tension of {w.name} reaches zero: it goes slack, and the simulation does not "
-                              "follow a slack rope.", where=hyb.system.name,
-                              hint="Until then the motion is exact; a slack rope needs the ends' motions as "
-                                   "coordinates of their own.")
-        exc.stop_reason = "slack"
-        raise exc
+    elif w.kind in ("slack", TIGHTENS):   # a rope's tension reaches zero, or its slack gap closes (.slack)
+        return rope_transition(hyb, model, w, t_, y, p, e_of, rest_speed, _current_signs(hyb, model))
     elif w.kind in ARC_KINDS:      # a profile's arc ends, comes back or strikes (model.profiles, arc_handover)
         return arc_transition(hyb, model, w, t_, y, p, e_of, rest_speed, transition, _current_signs)
     else:  # "reverses"

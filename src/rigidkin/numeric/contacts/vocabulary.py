@@ -31,7 +31,9 @@ def describe_mode(system, mode: dict) -> str:
         c = system.constraints.get(name)
         if c is None or (st == OPEN and getattr(c, "edge_of", None)):
             continue            # an edge at the end of an arc (model.arc_edges) is told only while it touches
-        if st == OPEN:
+        if getattr(c, "kind", "") in ("rope", "cable"):
+            words.append(f"{name} slack" if st == OPEN else f"{name} taut")
+        elif st == OPEN:
             words.append(f"{name} open")
         elif st == STICK:
             words.append(f"{name} rolling" if c.radius != 0 else f"{name} sticking")
