@@ -63,6 +63,9 @@ class Hybrid:
         if key not in self._solutions:
             try:              # 3D slip: the direction relative to a reference tangent (slip3d.expand)
                 self._solutions[key] = expand(self.system.solve(mode=dict(mode), integrate=False))
+                if any(r.indeterminate for r in self._solutions[key].regimes):     # settle's held alternative
+                    raise ModelError("statically indeterminate: " + ", ".join(self._solutions[key].regimes[0]
+                                     .indeterminate.reactions) + " are not separated by the balance laws.")
             except ModelError as exc:   # ConstraintError included
                 self._solutions[key] = ModeUnavailable(
                     f"the mode ({describe_mode(self.system, mode)}) cannot be derived from the model: "
