@@ -55,8 +55,10 @@ def _why(setup, eq, nrow, unknowns, tol) -> tuple[str, str, list]:
                 f"line of action), give {body} a rotational inertia (a rigid shape) and an angle, or hold it "
                 "from turning with a constraint that carries a couple.")
     else:
-        why = (f"with the other balances it asks{by} to take two different values"
-               + (" (it has no inertia term: a direction nothing moves in)" if _without_inertia(eq) else ""))
+        where = f" on {body}" if body else ""
+        why = (f"the other balances already fix{by}, and with those values the loads{where} in it do not balance"
+               + (" (it has no inertia term: no coordinate lets the body move this way)" if _without_inertia(eq)
+                  else ""))
         hint = ("The coordinates hold back a motion that no constraint enforces: a constraint (with its reaction) "
                 "is missing, or a load has no reaction to carry it; see the geometry and free-body diagrams "
                 "with 'rigidkin draw FILE'.")
@@ -95,8 +97,9 @@ def explain(setup, equations, nA: np.ndarray, nb: np.ndarray, unknowns) -> tuple
         contacts += [c for c in named if c not in contacts]
         body = getattr(equations[i], "body", None)
         bodies += [body] if body and body not in bodies else []
-    others = ["; ".join(equations[i].label for i in c) for c in sets if c != best][:4]
-    also = (f" (taking out {' or '.join(others)} instead would also remove the contradiction)" if others else "")
+    others = [equations[c[0]].label for c in sets if c != best and k == 1]
+    also = (f" (without {'; or '.join(others[:3])}{' or others' if len(others) > 3 else ''} instead, the rest "
+            "would hold too)" if others else "")
     msg = (f"the balance laws give {m} equations for {len(unknowns)} unknowns "
            f"({', '.join(text(u) for u in unknowns)}), and they contradict each other: {'; and '.join(parts)}"
            f"{also}.")

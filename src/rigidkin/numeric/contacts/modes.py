@@ -34,7 +34,7 @@ from ...model.inputs import input_symbols
 from ..rhs import RegimeFunctions, compile_functions
 from ..state import PositionConstraints, StateLayout, assemble
 from .mode_model import ModeModel, Watch
-from .settle import regime_at, settle
+from .settle import held_alternative, regime_at, settle
 from .slip3d import expand
 from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, mode_key
 
@@ -74,6 +74,15 @@ class Hybrid:
         if isinstance(sol, Exception):
             raise sol
         return sol
+
+    def derivable(self, mode: dict) -> dict:
+        """``mode``, or where it is over-constrained (two supports that both hold a body from slipping) the same
+        motion with the friction carried jointly (``settle.held_alternative``)."""
+        try:
+            self.solution(mode)
+        except ModeUnavailable:
+            return held_alternative(self, mode) or mode
+        return mode
 
     @property
     def kin(self):
