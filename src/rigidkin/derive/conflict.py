@@ -5,7 +5,8 @@ guilty.  The one named is found by taking each equation out in turn: those witho
 solution are the candidates (each alone explains the contradiction).  Of them the one that says least
 about motion is named first: the moment balance of a body that has no rotational inertia (a point mass
 or a massless link: the loads on it must pass through its centre), then a balance with no inertia term
-(statics along a direction nothing moves in), then the one with the fewest reactions.  The contacts
+(statics along a direction nothing moves in; a moment balance before a force balance: a body that no
+coordinate lets turn, and no constraint holds from turning), then the one with the fewest reactions.  The contacts
 whose reactions enter it are named with it.
 """
 
@@ -57,8 +58,9 @@ def _why(setup, eq, nrow, unknowns, tol) -> tuple[str, str, list]:
     else:
         where = f" on {body}" if body else ""
         why = (f"the other balances already fix{by}, and with those values the loads{where} in it do not balance"
-               + (" (it has no inertia term: no coordinate lets the body move this way)" if _without_inertia(eq)
-                  else ""))
+               + ((" (it has no inertia term: no coordinate lets the body turn this way, and no constraint carries "
+                   "a couple)" if "2nd law" in eq.label else " (it has no inertia term: no coordinate lets the body "
+                   "move this way)") if _without_inertia(eq) else ""))
         hint = ("The coordinates hold back a motion that no constraint enforces: a constraint (with its reaction) "
                 "is missing, or a load has no reaction to carry it; see the geometry and free-body diagrams "
                 "with 'rigidkin draw FILE'.")
@@ -83,7 +85,7 @@ def explain(setup, equations, nA: np.ndarray, nb: np.ndarray, unknowns) -> tuple
 
     def key(i):
         return (not _no_rotational_inertia(setup, equations[i]), not _without_inertia(equations[i]),
-                int(np.sum(np.abs(nA[i]) > tol)), i)
+                "2nd law" not in equations[i].label, int(np.sum(np.abs(nA[i]) > tol)), i)
 
     flagged = [c for c in sets if any(key(i)[0] is False or key(i)[1] is False for i in c)]
     if len(sets) == len(list(itertools.combinations(range(m), k))) and m > k and not flagged:
