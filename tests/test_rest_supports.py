@@ -182,6 +182,16 @@ def test_solve_command_states_it_in_text_and_json(tmp_path, capsys):
     assert "Statically indeterminate" in capsys.readouterr().out
 
 
+def test_a_question_for_an_indeterminate_reaction_says_so(tmp_path, capsys):
+    f = tmp_path / "block.toml"
+    f.write_text(BLOCK_TOML + '\n[[ask.question]]\nkind = "reaction"\nname = "front"\nreaction = "N_C"\n'
+                 '\n[[ask.question]]\nkind = "reaction"\nname = "grip"\nreaction = "F_A"\n')
+    assert main(["solve", str(f), "--no-cache"]) == 1          # one question not answered
+    out = " ".join(capsys.readouterr().out.split())
+    assert "N_C = g·la·m/(la + lb)" in out
+    assert "F_A is statically indeterminate in this mode: the balance laws determine only F_A + F_C = 0" in out
+
+
 def test_two_supports_moving_at_different_speeds_are_refused():
     """Both corners rolling on belts that run at different speeds: no motion satisfies both."""
     s = rk.System("two-belts")

@@ -124,7 +124,8 @@ def determinacy(setup, A: sp.Matrix, b: sp.Matrix, unknowns, equations, dof_note
     if not getattr(red, "redundant", ()):
         _determinacy(A, b, unknowns, labels, dof_note, equations, setup)
         return None
-    nA = _numeric_fast(A.row_join(b), 5)[:, :-1]
+    nAb = _numeric_fast(A.row_join(b), 5)
+    nA = nAb[:, :-1]
     tol = 1e-9 * max(1.0, float(np.abs(nA).max()))
     rank = np.linalg.matrix_rank(nA, tol=tol)
     _, _, vh = np.linalg.svd(nA)
@@ -132,14 +133,15 @@ def determinacy(setup, A: sp.Matrix, b: sp.Matrix, unknowns, equations, dof_note
     loose = [u for i, u in enumerate(unknowns) if null.size and np.abs(null[i]).max() > 1e-8]
     n_acc = len(red.independent)
     bad = [u for u in loose if unknowns.index(u) < n_acc or u in working]
-    if bad or not loose:
-        _determinacy(A, b, unknowns, labels, dof_note, equations, setup)     # the ordinary refusal
+    if bad or not loose:        # q̈ or a working reaction undetermined: the ordinary refusal; nothing loose: none
+        _determinacy(A, b, unknowns, labels, dof_note, equations, setup)
+        return None
     pivots: list[int] = []
     for j in range(len(unknowns)):
         if np.linalg.matrix_rank(nA[:, pivots + [j]], tol=tol) == len(pivots) + 1:
             pivots.append(j)
     free = [unknowns[j] for j in range(len(unknowns)) if j not in pivots]
-    _consistent(nA, _numeric_fast(A.row_join(b), 5)[:, -1:], pivots, unknowns, equations, dof_note, setup)
+    _consistent(nA, nAb[:, -1:], pivots, unknowns, equations, dof_note, setup)
     rhs = -b - (A.extract(list(range(A.rows)), [unknowns.index(f) for f in free]) * sp.Matrix(free))
     x = solve_linear(A.extract(list(range(A.rows)), pivots), rhs, simplify=setup.kin.simplify_expr)
     solved, combos = {}, []
@@ -154,7 +156,8 @@ def determinacy(setup, A: sp.Matrix, b: sp.Matrix, unknowns, equations, dof_note
     friction, conds = _friction(setup, combos, solved)
     out = Indeterminacy(names, tuple(combos), solved, friction, conds)
     trace.add("Solving", "Statically indeterminate reactions", [(c, v) for c, v in combos],
-              f"the constraint rows {', '.join(r.label for r in red.redundant)} repeat what the others impose, so "
+              f"the constraint rows {', '.join(repr(r.label) for r in red.redundant)} repeat what the others impose, "
+              "so "
               f"the balance laws determine the motion and {len(solved) - n_acc} reaction(s), but not "
               f"{', '.join(names)} one by one: only the combinations above (reduced row-echelon form of the "
               "balance equations).")
@@ -211,6 +214,6 @@ def _friction(setup, combos, solved) -> tuple[tuple[str, ...], tuple]:
         for sign in ((1,) if value == 0 else (-1, 1)):
             conds.append(Condition(setup.kin.simplify_expr(cap + sign * value), ">=", label, "validity"))
         notes.append(f"friction at {names}: a split with |F| ≤ µN at each contact exists iff |{text(lhs)}| ≤ "
-                     f"{text(cap)}, that is {text(cap)} ≥ {text(sp.Abs(value))}; chosen nowhere: any such split is "
-                     "consistent with the balance laws")
+                     f"{text(cap)}, that is {text(cap)} ≥ {text(sp.Abs(value))}; no split is chosen: any split within "
+                     "these limits satisfies the balance laws")
     return tuple(notes), tuple(conds)
