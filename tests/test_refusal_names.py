@@ -134,3 +134,17 @@ def test_cart_without_a_floor_names_both_conflicts():
     assert "Euler's 1st law for cart along Ey cannot hold" in msg
     assert "and Euler's 2nd law for cart about its mass centre, along Ez cannot hold" in msg
     assert err.where == "body cart, contact A, contact C"
+
+
+def test_two_coincident_pins_name_the_pins_whose_reactions_are_not_separated():
+    # a pendulum held at O by two pins: the force at O is determined, its split between the pins is not
+    s = rk.System("pendulum")
+    m, l, g = s.parameter("m", "kg"), s.parameter("l", "m"), s.parameter("g", "m/s^2")
+    th = s.coordinate("theta", "from the downward vertical")
+    R = s.frame("R", angle=th)
+    rod = s.body("rod", rk.shapes.SlenderRod(m, l, axis="y"), frame=R, at=s.point("G", offset=-l / 2 * R.y))
+    s.gravity(g)
+    s.pin("O", s.origin, rod)
+    s.pin("O2", s.origin, rod)
+    err = refusal(s)
+    assert "cannot be determined from them (the reactions of O, O2)" in str(err) and err.where == "O, O2"

@@ -49,10 +49,13 @@ def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "
     if rank < n:
         _, _, vh = np.linalg.svd(nA)
         null = vh[rank:].conj().T
-        loose = [text(unknowns[i]) for i in range(n) if np.abs(null[i]).max() > 1e-8]
+        loose = [unknowns[i] for i in range(n) if np.abs(null[i]).max() > 1e-8]
+        owner = {row.reaction: row.constraint for row in getattr(setup, "rows", ())}
+        of = sorted({owner[u] for u in loose if u in owner})
         raise ConstraintError(
             f"the balance laws give {len(labels)} equations of rank {rank} for {n} unknowns; "
-            f"{', '.join(loose)} cannot be determined from them.",
+            f"{', '.join(text(u) for u in loose)} cannot be determined from them"
+            + (f" (the reactions of {', '.join(of)})." if of else "."), where=", ".join(of) or None,
             hint="The model is under-determined: a reaction is redundant (statically indeterminate "
                  f"supports) or a body lacks a constraint or a coordinate. {dof_note}")
     keep = []
