@@ -182,6 +182,15 @@ def test_solve_command_states_it_in_text_and_json(tmp_path, capsys):
     assert "Statically indeterminate" in capsys.readouterr().out
 
 
+@pytest.mark.parametrize("method", ["lagrange", "kane"])
+def test_every_law_at_rest_gives_the_same_statics(method):
+    # no degree of freedom: Lagrange's and Kane's methods have no equation; the reactions come from Euler's laws
+    s = block(0.15, 0.35)
+    r = s.solve(method=method).regimes[0]
+    assert r.eom == () and number(r.reactions["N_A"], s) == pytest.approx(2.0 * G * 0.35 / 0.5, rel=1e-12)
+    assert r.indeterminate.reactions == ("F_A", "F_C")
+
+
 def test_a_question_for_an_indeterminate_reaction_says_so(tmp_path, capsys):
     f = tmp_path / "block.toml"
     f.write_text(BLOCK_TOML + '\n[[ask.question]]\nkind = "reaction"\nname = "front"\nreaction = "N_C"\n'
