@@ -148,3 +148,36 @@ def test_two_coincident_pins_name_the_pins_whose_reactions_are_not_separated():
     s.pin("O2", s.origin, rod)
     err = refusal(s)
     assert "cannot be determined from them (the reactions of O, O2)" in str(err) and err.where == "O, O2"
+
+
+def stack(e=0.1):
+    """Two point masses stacked: the upper one (x2, y2) on the lower one's top surface, h1 above its centre,
+    e ahead of it; the lower one (x1) on a rough floor."""
+    s = rk.System("stack")
+    m1, m2 = s.parameter("m1", "kg", value=3.0), s.parameter("m2", "kg", value=1.0)
+    g, h1 = s.parameter("g", "m/s^2", value=G), s.parameter("h1", "m", value=0.2)
+    F = s.inertial
+    x1 = s.coordinate("x1", "lower along Ex", kind="length", initial=0, rate=0)
+    x2 = s.coordinate("x2", "upper along Ex", kind="length", initial=e, rate=0)
+    y2 = s.coordinate("y2", "upper height", kind="length", initial=0.2, rate=0)
+    C1 = s.point("C1", s.origin, x1 * F.x)
+    low = s.body("lower", rk.shapes.PointMass(m1), frame=F, at=C1)
+    s.contact("floor", low, s.line(s.origin, F.y), centre=C1, normal_name="N_floor", friction=0.3,
+              friction_name="F_floor")
+    G2 = s.point("G2", s.origin, x2 * F.x + y2 * F.y)
+    up = s.body("upper", rk.shapes.PointMass(m2), frame=F, at=G2)
+    top = s.line(s.point("T", C1, h1 * F.y, body=low), F.y, body=low)
+    s.contact("top", up, top, centre=G2, normal_name="N", friction=0.5, friction_name="F")
+    s.gravity(g)
+    return s
+
+
+@pytest.mark.parametrize("mode", [{}, {"top": "stick", "floor": "slip"}, {"top": "stick", "floor": "stick"}])
+def test_point_mass_carrying_a_point_mass_off_its_centre_names_the_lower_ones_moment_balance(mode):
+    # the issue's case: the normal force N = m2 g of the upper block acts on the lower point mass e off its
+    # centre; before, the refusal blamed "Euler's 1st law for upper along Ey"
+    err = refusal(stack(0.1), mode)
+    msg = str(err)
+    assert "contradict each other: Euler's 2nd law for lower about its mass centre, along Ez cannot hold" in msg
+    assert "lower has no rotational inertia (a point mass)" in msg and err.where == "body lower, contact top"
+    assert "Euler's 1st law for upper along Ey cannot hold" not in msg
