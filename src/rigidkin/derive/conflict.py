@@ -49,7 +49,8 @@ def _why(setup, eq, nrow, unknowns, tol) -> tuple[str, str, list]:
           else " the loads in it")
     body = getattr(eq, "body", None)
     if _no_rotational_inertia(setup, eq):
-        why = (f"{body} has no rotational inertia (a {setup.system.bodies[body].shape.kind}), so the moment "
+        what = "a point mass" if setup.system.bodies[body].shape.kind == "point mass" else "massless"
+        why = (f"{body} has no rotational inertia ({what}), so the moment "
                f"about its centre of every load on it must vanish, but{by} act on it off its centre with a moment "
                "the other balances do not let vanish")
         hint = (f"Let the loads on {body} pass through its centre (place the contact points on its centre's "
