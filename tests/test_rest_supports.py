@@ -92,7 +92,10 @@ def test_rolling_block_reactions_match_the_simulation_at_rest(la, lb):
 def test_all_sticking_statics_with_a_push_gives_the_sum_and_the_slip_threshold():
     mu, P, d, la, lb, m = 0.4, 3.0, 0.45, 0.25, 0.25, 2.0
     s = block(la, lb, friction=mu, push=(P, d))
-    r = s.solve(mode={"A": "stick", "C": "stick"}).regimes[0]
+    sol = s.solve(mode={"A": "stick", "C": "stick"})
+    r = sol.regimes[0]
+    at = sol.reactions_at({})                  # numbers: the closed form checked against the balance equations
+    assert at == pytest.approx({"N_A": (m * G * lb - P * d) / (la + lb), "N_C": (m * G * la + P * d) / (la + lb)})
     # moments about C and about A (the push at height d, the weight at the middle)
     assert number(r.reactions["N_A"], s) == pytest.approx((m * G * lb - P * d) / (la + lb), rel=1e-12)
     assert number(r.reactions["N_C"], s) == pytest.approx((m * G * la + P * d) / (la + lb), rel=1e-12)
