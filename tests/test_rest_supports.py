@@ -111,6 +111,18 @@ def test_all_sticking_statics_with_a_push_gives_the_sum_and_the_slip_threshold()
     assert margins == pytest.approx(sorted([mu * m * G - P, mu * m * G + P]), rel=1e-12)
 
 
+def test_held_mode_takes_the_friction_limits_of_both_contacts():
+    # A sticks and carries the friction of C, which slips nowhere (the simulator's mode at rest): F_A = P and
+    # the limit is µ (N_A + N_C) = µ m g, not µ N_A
+    mu, P, d, m = 0.4, 3.0, 0.45, 2.0
+    s = block(0.15, 0.35, friction=mu, push=(P, d))
+    r = s.solve(mode={"A": "stick", "C": "slip"}).regimes[0]
+    assert number(r.reactions["F_A"], s) == pytest.approx(P, rel=1e-12)
+    limits = [c for c in r.validity if "friction" in c.label]
+    assert all("carries that of C" in c.label for c in limits) and len(limits) == 2
+    assert sorted(number(c.expr, s) for c in limits) == pytest.approx([mu * m * G - P, mu * m * G + P], rel=1e-12)
+
+
 @pytest.mark.slow
 def test_push_threshold_agrees_with_the_simulation_slipping():
     # P = c t: statics holds while a split within µN exists, c t ≤ µ m g; the simulation slips then

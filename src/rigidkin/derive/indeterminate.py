@@ -219,3 +219,25 @@ def _friction(setup, combos, solved) -> tuple[tuple[str, ...], tuple]:
                      f"{text(cap)}, that is {text(cap)} ≥ {text(sp.Abs(value))}; no split is chosen: any split within "
                      "these limits satisfies the balance laws")
     return tuple(notes), tuple(conds)
+
+
+def validity(setup, react, conditions, undetermined) -> tuple:
+    """The regime's validity conditions: those of each contact, the friction limits of the combinations
+    (``undetermined``), and where contacts are held (``setup.held``: named ``slip``, but the others keep
+    their slip speed at zero, so one sticking contact carries their friction with its own) the limit of
+    that contact raised by theirs, |F| ≤ µ N + Σ µ_h N_h, as the simulator takes it."""
+    out = list(conditions) + list(undetermined.conditions if undetermined else ())
+    held = [setup.system.constraints[h] for h in getattr(setup, "held", ())]
+    sticking = [c for c in setup.system.constraints.values() if setup.states.get(c.name) == "stick"
+                and hasattr(getattr(c, "friction", None), "mu") and str(c.F) in react]
+    if not held or len(sticking) != 1 or any(str(h.N) not in react for h in held):
+        return tuple(out)
+    c = sticking[0]
+    mine = f"friction at {c.name} within "
+    out = [cd for cd in out if not cd.label.startswith(mine)]
+    cap = sum((getattr(x.friction, "static", x.friction.mu) * react[str(x.N)] for x in [c] + held), sp.Integer(0))
+    label = (f"friction at {c.name}, which carries that of {', '.join(h.name for h in held)}, within "
+             f"µN summed over them (no slip)")
+    F = react[str(c.F)]
+    return tuple(out) + tuple(Condition(setup.kin.simplify_expr(cap + sign * F), ">=", label, "validity")
+                              for sign in ((1,) if F == 0 else (-1, 1)))

@@ -310,7 +310,7 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
 
     def validity():
         repeatable()
-        return tuple(_validity(setup, react_map)) + (undetermined.conditions if undetermined else ())
+        return indeterminate.validity(setup, react_map, _validity(setup, react_map), undetermined)
 
     regime = Regime(tuple(conditions), Deferred(validity), MappingProxyType(dict(sign_map)),
                     Deferred(lambda: tuple(readable()[2])), accel_map, react_map, Deferred(lambda: readable()[0]),

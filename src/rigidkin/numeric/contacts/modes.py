@@ -62,10 +62,11 @@ class Hybrid:
         key = mode_key(mode)
         if key not in self._solutions:
             try:              # 3D slip: the direction relative to a reference tangent (slip3d.expand)
-                self._solutions[key] = expand(self.system.solve(mode=dict(mode), integrate=False))
-                if any(r.indeterminate for r in self._solutions[key].regimes):     # settle's held alternative
-                    raise ModelError("statically indeterminate: " + ", ".join(self._solutions[key].regimes[0]
-                                     .indeterminate.reactions) + " are not separated by the balance laws.")
+                sol = self.system.solve(mode=dict(mode), integrate=False)
+                if sol.regimes[0].indeterminate:        # two supports holding a body: settle's held alternative
+                    raise ModelError("statically indeterminate: " + ", ".join(sol.regimes[0].indeterminate.reactions)
+                                     + " are not separated by the balance laws.")
+                self._solutions[key] = expand(sol)
             except ModelError as exc:   # ConstraintError included
                 self._solutions[key] = ModeUnavailable(
                     f"the mode ({describe_mode(self.system, mode)}) cannot be derived from the model: "
