@@ -116,7 +116,10 @@ def test_held_mode_takes_the_friction_limits_of_both_contacts():
     # the limit is µ (N_A + N_C) = µ m g, not µ N_A
     mu, P, d, m = 0.4, 3.0, 0.45, 2.0
     s = block(0.15, 0.35, friction=mu, push=(P, d))
-    r = s.solve(mode={"A": "stick", "C": "slip"}).regimes[0]
+    sol = s.solve(mode={"A": "stick", "C": "slip"})
+    r = sol.regimes[0]
+    assert {q.func.__name__: str(v) for q, v in sol.relations.items()} == {"theta": "0", "y": "h/2"}
+    assert number(r.reactions["N_A"], s) == pytest.approx((m * G * 0.35 - P * d) / 0.5, rel=1e-12)
     assert number(r.reactions["F_A"], s) == pytest.approx(P, rel=1e-12)
     limits = [c for c in r.validity if "friction" in c.label]
     assert all("carries that of C" in c.label for c in limits) and len(limits) == 2
