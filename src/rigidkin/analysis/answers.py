@@ -119,6 +119,10 @@ def _reaction(system, question, f, context):
     sol = _solution(system, f)
     name = str(f.get("reaction"))
     regime = sol.regimes[0]
+    if name in getattr(regime.indeterminate, "reactions", ()):     # two supports sharing friction (statics)
+        raise RigidkinError(f"{name} is statically indeterminate in this mode: the balance laws determine only "
+                            + "; ".join(f"{text(c)} = {text(v)}" for c, v in regime.indeterminate.combinations) + ".",
+                            where=question.where, hint=f"Reactions determined: {', '.join(regime.reactions)}.")
     if name not in regime.reactions:
         raise InputError(f"there is no reaction named '{name}'.", where=question.where,
                          hint=f"Reactions: {', '.join(regime.reactions)}.")

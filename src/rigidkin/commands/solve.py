@@ -25,7 +25,9 @@ def register(sub) -> None:
     p.add_argument("--no-answers", action="store_true", help="skip the questions in the file's [ask]")
     p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="the state of a contact: open, slip or stick (repeatable); a mode at rest (every "
-                        "contact sticking) gives the reactions of statics")
+                        "contact sticking) gives the reactions of statics, and names those that statics leaves "
+                        "indeterminate (two supports that both hold a body from slipping share their friction: "
+                        "only the sum is given)")
     add_no_cache(p)
     add_timeout(p)
     p.set_defaults(func=run)

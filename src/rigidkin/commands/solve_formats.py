@@ -76,6 +76,11 @@ def _regime(sol, r, shown, labels, eom) -> list:
     if names:
         out.append(("Reactions", [("item", labels.get(k, "reaction"), f"{latex(sp.Symbol(k))} = "
                                                                       f"{latex(r.reactions[k])}") for k in names]))
+    if getattr(r, "indeterminate", None):                  # statically indeterminate (derive/indeterminate.py)
+        ind = r.indeterminate
+        out.append(("Statically indeterminate", [("text", ind.lines()[0])]
+                    + [("math", f"{latex(c)} = {latex(v)}") for c, v in ind.combinations]
+                    + [("text", note) for note in ind.friction]))
     if r.validity:
         named = {v: k for k, v in r.reactions.items()}         # N_A ≥ 0 rather than its expression
         out.append(("Holds while", [("item", c.label, f"{latex(sp.Symbol(named[c.expr]))} {_REL[c.relation]} 0"

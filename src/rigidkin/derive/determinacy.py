@@ -16,6 +16,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base import algebra
 from ..base.errors import ConstraintError
 from ..base.printing import text
+from . import conflict
 
 t = dynamicsymbols._t
 
@@ -36,8 +37,10 @@ def _numeric_fast(M: sp.Matrix, seed: int) -> np.ndarray:
         return np.array(algebra.evaluate(entries, vals), dtype=complex).reshape(M.shape)
 
 
-def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "") -> list[int]:
-    """Check the linear system; return the indices of a square, nonsingular set of rows."""
+def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "", equations=None,
+                 setup=None) -> list[int]:
+    """Check the linear system; return the indices of a square, nonsingular set of rows.  With the balance
+    ``equations`` (and the mode's ``setup``) a contradiction names the body, law and contact in conflict."""
     Ab = _numeric_fast(A.row_join(b), 5)
     nA, nb = Ab[:, :-1], Ab[:, -1:]
     scale = max(1.0, float(np.abs(nA).max()))
@@ -46,10 +49,13 @@ def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "
     if rank < n:
         _, _, vh = np.linalg.svd(nA)
         null = vh[rank:].conj().T
-        loose = [text(unknowns[i]) for i in range(n) if np.abs(null[i]).max() > 1e-8]
+        loose = [unknowns[i] for i in range(n) if np.abs(null[i]).max() > 1e-8]
+        owner = {row.reaction: row.constraint for row in getattr(setup, "rows", ())}
+        of = sorted({owner[u] for u in loose if u in owner})
         raise ConstraintError(
             f"the balance laws give {len(labels)} equations of rank {rank} for {n} unknowns; "
-            f"{', '.join(loose)} cannot be determined from them.",
+            f"{', '.join(text(u) for u in loose)} cannot be determined from them"
+            + (f" (the reactions of {', '.join(of)})." if of else "."), where=", ".join(of) or None,
             hint="The model is under-determined: a reaction is redundant (statically indeterminate "
                  f"supports) or a body lacks a constraint or a coordinate. {dof_note}")
     keep = []
@@ -63,6 +69,9 @@ def _determinacy(A: sp.Matrix, b: sp.Matrix, unknowns, labels, dof_note: str = "
     x = np.linalg.solve(nA[keep], nb[keep])
     bad = [labels[i] for i in range(len(labels)) if i not in keep
            and abs((nA[i] @ x - nb[i])[0]) > 1e-8 * max(1.0, float(np.abs(nb).max()))]
+    named = conflict.explain(setup, equations, nA, nb, unknowns) if bad and equations is not None else None
+    if named:
+        raise ConstraintError(named[0], hint=f"{named[1]} {dof_note}".strip(), where=named[2] or None)
     if bad:
         raise ConstraintError(
             f"the balance laws give {len(labels)} equations for {n} unknowns "

@@ -61,7 +61,8 @@ def _compiled(solution, regime):
         # Lagrange's and Kane's equations have no reactions: they come from Euler's laws, same mode
         equations = solution.system.solve(mode=dict(solution.states)).equations
         present = {s for e in equations for s in e.expr.free_symbols}
-    react_syms = sorted((s for s in present if s.name in names), key=str)
+    loose = set(getattr(regime.indeterminate, "reactions", ()))   # statically indeterminate: unknowns too
+    react_syms = sorted((s for s in present if s.name in names or s.name in loose), key=str)
     exprs = [e.expr.xreplace(dict(regime.signs)) for e in equations]
     A, b = linear_form(exprs, accels + react_syms)
     plain, back = algebra.plain_state(closed if names else sp.Matrix([0]))
@@ -111,28 +112,30 @@ def reactions_at(solution, state: Mapping, values: Mapping | None = None, regime
         closed = np.array(f_closed(float(full.get(t, 0.0)), *args), dtype=complex).ravel()
     if np.all(np.isfinite(closed)) and np.all(np.abs(closed.imag) <= 1e-9 * np.maximum(1, np.abs(closed.real))):
         values_closed = closed.real
-        numeric = _numeric(f_lin, full.get(t, 0.0), args, names, react_syms, n_acc)
+        numeric = _numeric(f_lin, full.get(t, 0.0), args, names, react_syms, n_acc, regime.indeterminate)
         if numeric is None:
             return dict(zip(names, map(float, values_closed)))
         scale = max(1.0, float(np.abs(numeric).max()))
         if np.abs(values_closed - numeric).max() <= 1e-6 * scale:
             return dict(zip(names, map(float, values_closed)))
         return dict(zip(names, map(float, numeric)))      # the closed form lost its digits here
-    numeric = _numeric(f_lin, full.get(t, 0.0), args, names, react_syms, n_acc)
+    numeric = _numeric(f_lin, full.get(t, 0.0), args, names, react_syms, n_acc, regime.indeterminate)
     if numeric is None:
         raise RigidkinError("the reactions are not determined at this state (the balance equations are "
                             "singular there).")
     return dict(zip(names, map(float, numeric)))
 
 
-def _numeric(f_lin, time, args, names, react_syms, n_acc):
-    """The reactions from the balance equations solved numerically (None where they are singular)."""
+def _numeric(f_lin, time, args, names, react_syms, n_acc, loose=None):
+    """The reactions from the balance equations solved numerically (None where they are singular; with
+    statically indeterminate reactions ``loose``, the least-norm solution: the determinate ones are the same in
+    every solution)."""
     with np.errstate(all="ignore"):
         Ab = np.array(f_lin(float(time), *args), dtype=float)
     if not np.all(np.isfinite(Ab)):
         return None
     A, b = Ab[:, :-1], -Ab[:, -1]
-    if np.linalg.matrix_rank(A) < A.shape[1]:
+    if np.linalg.matrix_rank(A) < A.shape[1] and not loose:
         return None
     x, *_ = np.linalg.lstsq(A, b, rcond=None)
     by_name = {str(s): x[n_acc + i] for i, s in enumerate(react_syms)}

@@ -26,6 +26,7 @@ from ..base.errors import ConstraintError
 from ..base.linear import linear_form
 from ..base.trace import Trace
 from ..model.speeds import is_quasi, speeds_of
+from .indeterminate import rest_configuration, split_redundant
 from .prescribed import refuse_driven_against_ground
 
 if TYPE_CHECKING:
@@ -210,6 +211,7 @@ class Reduction:
     rate_integrated: frozenset = frozenset()           # the q_d of coord_map found by integrating rate relations
     built_in: tuple = ()                               # rows satisfied identically by the coordinates
     relating: tuple = ()                               # rows that relate the rates
+    redundant: tuple = ()                              # no-slip rows that repeat the others (indeterminate)
     relations: tuple = ()                              # (lhs, rhs, why) for the trace
 
     def reduce(self, expr):
@@ -307,15 +309,14 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
     numA = _numeric_matrix(A, rng)
     refuse_driven_against_ground(relating, exprs, numA)
     rank = np.linalg.matrix_rank(numA, tol=1e-9)
-    if rank < len(relating):
-        # find the rows that add nothing
-        keep, redundant = [], []
-        for i in range(len(relating)):
-            trial = keep + [i]
-            if np.linalg.matrix_rank(numA[trial], tol=1e-9) == len(trial):
-                keep = trial
-            else:
-                redundant.append(relating[i])
+    redundant = []
+    if rank < len(relating):            # the rows that add nothing: no-slip rows where they can be
+        keep, redundant = split_redundant(relating, numA, A, b)
+    if redundant and all(r.kind == "tangential" for r in redundant):
+        # held from slipping twice (two rolling supports): the motion is determined, the friction split is not
+        relating, exprs, A, b, numA = ([relating[i] for i in keep], [exprs[i] for i in keep],
+                                       A.extract(keep, list(range(A.cols))), b.extract(keep, [0]), numA[keep])
+    elif redundant:
         names = ", ".join(f"'{r.label}'" for r in redundant)
         raise ConstraintError(
             f"the model is over-constrained: the constraint rows {names} repeat what the other constraints "
@@ -367,8 +368,11 @@ def reduce_constraints(system, kin: Kinematics, rows, independent=None, trace: T
     for q in dep:
         relations.append((q.diff(t), rate_map[q.diff(t)],
                           "solved from the constraints " + ", ".join(r.label for r in relating)))
-    red = Reduction(tuple(ind), tuple(dep), rate_map, accel_map, {}, built_in=tuple(built), relating=tuple(relating))
+    red = Reduction(tuple(ind), tuple(dep), rate_map, accel_map, {}, built_in=tuple(built), relating=tuple(relating),
+                    redundant=tuple(redundant))
     _integrate(system, kin, red, relating, trace)
+    if red.redundant and not red.independent:       # at rest on repeated supports: where the gaps put it
+        red.coord_map = {**red.coord_map, **rest_configuration(system, kin, dep, list(built) + relating, trace)}
     red.relations = tuple(relations)
     if trace is not None:
         for row in relating:

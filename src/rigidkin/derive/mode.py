@@ -19,6 +19,7 @@ from ..base.trace import LazyEquations, Trace
 from ..model.loads import Application, SignChoice
 from ..model.speeds import is_quasi
 from .derivation import derivation_of
+from .indeterminate import rest_configuration
 from .kinematics import Kinematics, Reduction, reduce_constraints
 
 
@@ -93,6 +94,9 @@ def setup_mode(system, mode: dict | None = None, independent=None, substitutions
         red = replace(red, coord_map={k: v for k, v in red.coord_map.items() if k not in red.rate_integrated},
                       rate_integrated=frozenset())
     held = _held_contacts(system, kin, red, loads, mode, trace)
+    if held and integrate and not red.independent:      # at rest, held: where the closed gaps put it
+        red.coord_map = {**red.coord_map, **rest_configuration(system, kin, red.dependent,
+                                                               [*red.built_in, *red.relating], trace)}
     loads = [ld for ld in loads if not (getattr(ld, "name", None) in held and ld.kind == "sliding friction")]
     apps, signs = [], []
     for ld in loads:

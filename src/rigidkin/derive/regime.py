@@ -72,13 +72,14 @@ class Regime:
     ``raw_mass_matrix`` and ``raw_forcing`` are M and f as derived (what numeric code needs).
     """
 
+    indeterminate = None    # an Indeterminacy (derive/indeterminate.py) where reactions are statically indeterminate
     validity = _lazy("validity")
     eom = _lazy("eom")
     mass_matrix = _lazy("mass_matrix")
     forcing = _lazy("forcing")
 
     def __init__(self, conditions, validity, signs, eom, accelerations, reactions, mass_matrix, forcing,
-                 raw_mass_matrix=None, raw_forcing=None):
+                 raw_mass_matrix=None, raw_forcing=None, indeterminate=None):
         d = self.__dict__
         d["conditions"], d["signs"] = tuple(conditions), signs
         d["accelerations"] = keyed(accelerations, "accelerations (coordinate → q̈)")
@@ -86,6 +87,7 @@ class Regime:
         d["_validity"], d["_eom"], d["_mass_matrix"], d["_forcing"] = validity, eom, mass_matrix, forcing
         d["raw_mass_matrix"] = raw_mass_matrix if raw_mass_matrix is not None else mass_matrix
         d["raw_forcing"] = raw_forcing if raw_forcing is not None else forcing
+        d["indeterminate"] = indeterminate
 
     def __setattr__(self, name, value):
         raise AttributeError(f"a Regime is read-only ({name})")

@@ -42,8 +42,8 @@ from ..base.trigforms import compact
 from ..base.vectorops import dot, in_frame
 from ..model.profiles import arc_margins
 from ..model.speeds import quaternion_groups
-from . import closed_forms
-from .determinacy import _determinacy
+from . import closed_forms, indeterminate
+from .determinacy import _determinacy  # noqa: F401 (re-exported: numeric/compiled/codegen.py)
 from .evaluation import reactions_at
 from .keyed import keyed, to_ours
 from .kinematics import linear_form
@@ -255,15 +255,16 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
     dof_note = (f"{len(red_.independent) + len(red_.dependent)} coordinates and {len(red_.relating)} "
                 f"rate-relating constraint rows leave {red_.dof} degree(s) of freedom; the constraints "
                 f"bring the reactions {', '.join(map(str, setup.reactions)) or 'none'}.")
-    _determinacy(A, b, unknowns, [e.label for e in equations], dof_note)
     raw_rows = _projected_rows(setup, balances, sign_map)
     working = _working_reactions(raw_rows, reactions)
+    # None, or what the balance laws leave undetermined (repeated no-slip rows: derive/indeterminate.py)
+    undetermined = indeterminate.determinacy(setup, A, b, unknowns, equations, dof_note, working, trace)
     accel_syms = [q.diff(t, 2) for q in red.independent]
-    if working:
-        x = solve_linear(A, -b, simplify=kin.simplify_expr)
-        solved = dict(zip(unknowns, x))
+    if working or undetermined:
+        solved = (undetermined.solved if undetermined
+                  else dict(zip(unknowns, solve_linear(A, -b, simplify=kin.simplify_expr))))
         accels = {q: solved[q.diff(t, 2)] for q in red.independent}
-        react = {str(r): solved[r] for r in reactions}
+        react = {str(r): solved[r] for r in reactions if r in solved}
         for r in missing:
             react[str(r)] = sp.Integer(0)
         M_raw, f_raw = _rows_to_mf(setup, raw_rows, reactions, solved, working)
@@ -309,12 +310,12 @@ def _solve_regime(setup, choices, equations, balances, unknowns, reactions, miss
 
     def validity():
         repeatable()
-        return tuple(_validity(setup, react_map))
+        return indeterminate.validity(setup, react_map, _validity(setup, react_map), undetermined)
 
     regime = Regime(tuple(conditions), Deferred(validity), MappingProxyType(dict(sign_map)),
                     Deferred(lambda: tuple(readable()[2])), accel_map, react_map, Deferred(lambda: readable()[0]),
-                    Deferred(lambda: readable()[1]), raw_mass_matrix=M_raw, raw_forcing=f_raw)
-    if not working:
+                    Deferred(lambda: readable()[1]), M_raw, f_raw, undetermined)
+    if not (working or undetermined):
         regime_box.append(regime)
     else:
         choice = closed_forms.FormChoice(True, 0, len(accel_syms))

@@ -52,6 +52,8 @@ def regime_data(regime) -> dict:
         "forcing": [_s(x) for x in regime.forcing],
         "accelerations": None if large else {q.func.__name__: _s(a) for q, a in acc.items()},
         "reactions": {k: _s(v) for k, v in regime.reactions.items()},
+        # statically indeterminate reactions (derive/indeterminate.py): named, with the combinations determined
+        "indeterminate": regime.indeterminate.data() if getattr(regime, "indeterminate", None) else None,
     }
 
 
@@ -160,6 +162,7 @@ def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] 
         "accelerations": first["accelerations"],
         "reactions": first["reactions"],
         "validity": first["validity"],
+        "indeterminate": first["indeterminate"],
         "regimes": regimes,
         "answers": {},
         "answer_text": {},

@@ -129,6 +129,7 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
         for i, v in given.items():
             y[i] = v
         try:
+            cand = hyb.derivable(cand)      # at rest on two supports that both hold it from slipping: shared friction
             rel_slots, rel_fn, rate_slots, rate_fn = hyb.relation_functions(cand, integrated=True)
             at_rest = not hyb.solution(cand).coordinates
         except ModeUnavailable:

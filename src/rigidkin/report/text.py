@@ -127,6 +127,8 @@ def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
         for k in shown:
             out.append(f"{_INDENT}{k}: {labels.get(k, 'reaction')}")
             out.append(f"{_INDENT * 2}{k} = {text(r.reactions[k])}")
+    if getattr(r, "indeterminate", None):        # statically indeterminate (derive/indeterminate.py)
+        out += ["", "Statically indeterminate"] + [f"{_INDENT}{line}" for line in r.indeterminate.lines()]
     if r.validity:
         out += ["" if shown else None, "Holds while"]
         out = [line for line in out if line is not None]

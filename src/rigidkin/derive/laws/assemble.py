@@ -80,7 +80,8 @@ def solution_from_rows(setup: ModeSetup, equations, method: str, trace: Trace, r
                       + (f" while {ref.describe()}" if ref.conditions else "") + ".")
         trace.add("Solving", "Reactions (from Euler's laws)", [],
                   f"{method} eliminates the reactions; they follow from Euler's laws with these accelerations.")
-        regimes.append(Regime(ref.conditions, ref.validity, ref.signs, tuple(eom), acc, ref.reactions, M, f))
+        regimes.append(Regime(ref.conditions, ref.validity, ref.signs, tuple(eom), acc, ref.reactions, M, f,
+                              indeterminate=ref.indeterminate))
     trace.add("Solving", "Equations of motion", [(e, 0) for r in regimes for e in r.eom],
               f"the equations of {method}, free of reactions: " + "; ".join(text(e) for e in accels) + ".")
     return Solution(setup.system, method, MappingProxyType(dict(setup.states)), tuple(red.independent),

@@ -47,6 +47,8 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
         raise NotApplicable("the adapter to sympy's KanesMethod takes u = q̇, and this system's speeds are "
                             "angular-velocity components (q̇ = W(q) u, model/speeds.py).", where=setup.system.name,
                             hint="Newton–Euler resolved along the body axes gives Kane's equations in those speeds.")
+    if not setup.reduction.independent:     # at rest: no speed is free, so no Kane's equation (statics)
+        return []
     kin, tr = setup.kin, setup.trace
     model = build(setup, "forces", METHOD, evidence=True)
     qs = list(setup.system.coordinates)

@@ -35,7 +35,7 @@ from ..rhs import RegimeFunctions, compile_functions
 from ..state import PositionConstraints, StateLayout, assemble
 from .arc_support import arc_gap, arc_watches, dormant, extended, leaving_end, off_arc, parent_of
 from .mode_model import ModeModel, Watch
-from .settle import regime_at, settle
+from .settle import held_alternative, regime_at, settle
 from .slack import TIGHTENS, slack_gap, with_offsets
 from .slip3d import expand
 from .vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode, mode_key
@@ -67,7 +67,11 @@ class Hybrid:
         if key not in self._solutions:
             try:              # 3D slip: the direction relative to a reference tangent (slip3d.expand)
                 system, mode_ = self._system_for(mode)
-                self._solutions[key] = expand(system.solve(mode=mode_, integrate=False))
+                sol = system.solve(mode=mode_, integrate=False)
+                if sol.regimes[0].indeterminate:        # two supports holding a body: settle's held alternative
+                    raise ModelError("statically indeterminate: " + ", ".join(sol.regimes[0].indeterminate.reactions)
+                                     + " are not separated by the balance laws.")
+                self._solutions[key] = expand(sol)
             except ModelError as exc:   # ConstraintError included
                 self._solutions[key] = ModeUnavailable(
                     f"the mode ({describe_mode(self.system, mode)}) cannot be derived from the model: "
@@ -85,6 +89,15 @@ class Hybrid:
         if all(mode.get(e) == OPEN for es in self.edges.values() for e in es):
             return self.base, {n: s for n, s in mode.items() if n in self.base.constraints}
         return self.system, dict(mode)
+
+    def derivable(self, mode: dict) -> dict:
+        """``mode``, or where it is over-constrained (two supports that both hold a body from slipping) the same
+        motion with the friction carried jointly (``settle.held_alternative``)."""
+        try:
+            self.solution(mode)
+        except ModeUnavailable:
+            return held_alternative(self, mode) or mode
+        return mode
 
     @property
     def kin(self):
