@@ -131,12 +131,13 @@ def main() -> None:
     ap.add_argument("--format", choices=("csv", "parquet"), default="csv")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--profile", action="store_true", help="also a cProfile of the main thread at 1 thread")
+    ap.add_argument("--src", default=str(ROOT / "src"), help="the rigidkin sources to time (another tree's src: before)")
     args = ap.parse_args()
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     threads = args.threads or sorted({t for t in (1, 2, 4, 8, 16) if t <= cores} | {cores})
-    print(f"# Serial part of a whole sweep command ({machine()})", flush=True)
+    print(f"# Serial part of a whole sweep command ({machine()}; sources: {args.src})", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
-        env = dict(os.environ, RIGIDKIN_CACHE=str(Path(tmp, "cache")), PYTHONPATH=str(ROOT / "src"),
+        env = dict(os.environ, RIGIDKIN_CACHE=str(Path(tmp, "cache")), PYTHONPATH=str(Path(args.src).resolve()),
                    PYTHONPYCACHEPREFIX=str(Path(tmp, "pyc")))          # byte code kept, as an installed package's
         env.pop("PYTHONDONTWRITEBYTECODE", None)
         out = Path(tmp, f"runs.{args.format}")

@@ -289,13 +289,24 @@ def arrow_table(columns: Mapping[str, np.ndarray], metadata: Mapping[str, str] |
         elif kind == "b":
             out.append(pa.array(a, type=pa.bool_()))
         else:                                   # text: each distinct value once, and a code per row
-            labels: dict = {}
-            codes = [labels.setdefault(v, len(labels)) for v in a.tolist()]
-            words = [None if v is None else str(v) for v in labels]
-            out.append(pa.DictionaryArray.from_arrays(pa.array(np.asarray(codes, dtype=np.int32)),
-                                                      pa.array(words, type=pa.string())))
+            out.append(_dictionary(pa, a))
     meta = {str(k).encode(): str(v).encode() for k, v in (metadata or {}).items()}
     return pa.Table.from_arrays(out, names=names).replace_schema_metadata(meta or None)
+
+
+def _dictionary(pa, a: np.ndarray):
+    """A text column dictionary-encoded, the words in order of first appearance: by pyarrow where every value is a
+    string (no Python work per row), else value by value."""
+    if all(isinstance(v, str) for v in a[:: max(1, a.size // 64)].tolist()):
+        try:
+            return pa.array(a, type=pa.string()).dictionary_encode()
+        except (pa.ArrowInvalid, pa.ArrowTypeError):
+            pass
+    labels: dict = {}
+    codes = [labels.setdefault(v, len(labels)) for v in a.tolist()]
+    words = [None if v is None else str(v) for v in labels]
+    return pa.DictionaryArray.from_arrays(pa.array(np.asarray(codes, dtype=np.int32)),
+                                          pa.array(words, type=pa.string()))
 
 
 def write_parquet(columns: Mapping[str, np.ndarray], path, what: str = "the table",
