@@ -169,6 +169,14 @@ def rigidkin_command() -> list[str]:
     return [str(script)] if script.exists() else [sys.executable, "-m", "rigidkin"]
 
 
+def child_env(tmp, cache) -> dict:
+    """The environment of a timed command: its cache folder, and its byte code kept (``PYTHONPYCACHEPREFIX``, under
+    ``tmp``) as an installed package's is, even where ``PYTHONDONTWRITEBYTECODE`` is set."""
+    env = dict(os.environ, RIGIDKIN_CACHE=str(cache), PYTHONPYCACHEPREFIX=str(Path(tmp) / "pyc"))
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
+
+
 def timed_command(argv: list[str], env: dict) -> tuple[float, float, str]:
     """(CPU s of the child and its children, wall s, stdout) of one command; raises on a non-zero exit."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -274,7 +282,7 @@ def command_rows(runs: int, base_runs: int, repeats: int):
     with tempfile.TemporaryDirectory(prefix="rk-sweep-bench-") as tmp:
         cache = Path(tmp) / "cache"
         cache.mkdir(mode=0o700)
-        env = dict(os.environ, RIGIDKIN_CACHE=str(cache))
+        env = child_env(tmp, cache)
         base = [*rigidkin_command(), "sweep", "ladder", "--param", f"theta=0.05:1.3:{runs}", "--stop-at", "N_A"]
         first = timed_command([*base, "-o", str(Path(tmp) / "first.csv")], env)
         for part in np.array_split(sample, repeats):
@@ -362,7 +370,7 @@ def anchor_rows(sizes: list[int], python: str | None, repeats: int = 3):
     with tempfile.TemporaryDirectory(prefix="rk-anchor-") as tmp:
         cache = Path(tmp) / "cache"
         cache.mkdir(mode=0o700)
-        env = dict(os.environ, RIGIDKIN_CACHE=str(cache))
+        env = child_env(tmp, cache)
         for runs in sizes:
             k = repeats if runs <= 100_000 else 1
             argv = [*rigidkin_command(), "sweep", "ladder", "--param", f"theta=0.05:1.3:{runs}", "--stop-at", "N_A",

@@ -131,7 +131,7 @@ def main() -> None:
     ap.add_argument("--format", choices=("csv", "parquet"), default="csv")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--profile", action="store_true", help="also a cProfile of the main thread at 1 thread")
-    ap.add_argument("--src", default=str(ROOT / "src"), help="the rigidkin sources to time (another tree's src: before)")
+    ap.add_argument("--src", default=str(ROOT / "src"), help="the rigidkin sources to time (before: another tree)")
     args = ap.parse_args()
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     threads = args.threads or sorted({t for t in (1, 2, 4, 8, 16) if t <= cores} | {cores})
