@@ -397,10 +397,11 @@ def anchor_rows(sizes: list[int], python: str | None, repeats: int = 3):
                          d["integrate_s"], d["integrate_cpu_s"], d["process_s"], d["process_cpu_s"], None,
                          f"{d['max_err']:.1e}", f"~{6 * d['max_steps']}", f"{os.getloadavg()[0]:.1f}"])
             best = min(mine.values())[0]
-            notes.append(f"{runs:,} runs: diffrax / rigidkin = {d['integrate_s'] / best:.1f}× integrating "
-                         f"(wall, rigidkin's faster thread count), {d['process_s'] / cmd_wall:.1f}× whole process "
-                         f"(wall); diffrax compile {d['compile_s']:.1f} s, import {d['import_s']:.1f} s, "
-                         f"{d['missed']} runs without the event; medians of {k}")
+            notes.append(f"{runs:,} runs: diffrax / rigidkin = {d['integrate_s'] / best:.1f}× integrating (wall, "
+                         f"rigidkin's faster thread count), {d['integrate_cpu_s'] / mine[1][1]:.1f}× (CPU, rigidkin "
+                         f"on 1 thread); whole process {d['process_s'] / cmd_wall:.1f}× (wall), "
+                         f"{d['process_cpu_s'] / cmd_cpu:.1f}× (CPU); diffrax compile {d['compile_s']:.1f} s, import "
+                         f"{d['import_s']:.1f} s, {d['missed']} runs without the event; medians of {k}")
     notes.append("integrate: after compilation (rigidkin: batch.integrate on the planned runs; diffrax: the "
                  "AOT-compiled jit(vmap(solve)), results on the host); whole: a fresh process, wall and CPU "
                  "(rigidkin: `rigidkin sweep ... -o runs.csv`, cache folder warm; cold: an empty one — derive, "
