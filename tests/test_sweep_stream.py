@@ -189,3 +189,50 @@ def test_gpu_kernel_source_parses_as_cuda_cpp(ladder, tmp_path):
         r = subprocess.run(["g++", "-std=c++14", "-fsyntax-only", "-w", str(f)], capture_output=True, text=True)
         assert r.returncode == 0, r.stderr[:2000]
     assert 'extern "C" __global__' in src.split("#else")[0]
+
+
+@needs_c
+def test_record_sweep_planned_ahead_writes_the_whole_sweeps_table(ladder, tmp_path, monkeypatch):
+    """A repeat answered from the numeric record plans each chunk in a thread while the one before is integrated:
+    the table is still the whole sweep's, byte for byte, every chunk planned once and in order; a chunk the planner
+    refuses stops the sweep at that chunk, after the earlier ones, and no table is left."""
+    from rigidkin.numeric.sweeps import sweep_record
+
+    whole = tmp_path / "whole.csv"
+    res = sweep(ladder, VARY, stop_at="N_A", keep_record=True)
+    res.write(whole)
+    rec = res.record
+    assert rec is not None
+    src = sweep_record.run(rec, VARY, {}, {}, 10.0, 1e-10, 1e-12, None, None, stream=5)
+    assert src.plan_ahead
+    calls, threads = [], set()
+    plan = src.plan
+
+    def spy(first, stop):
+        import threading
+
+        calls.append((first, stop))
+        threads.add(threading.current_thread().name)
+        return plan(first, stop)
+
+    monkeypatch.setattr(src, "plan", spy)
+    streamed = tmp_path / "streamed.csv"
+    write_sweep(src, streamed, chunk=5)
+    assert streamed.read_bytes() == whole.read_bytes()
+    assert calls == [(a, min(36, a + 5)) for a in range(0, 36, 5)]
+    assert all(name.startswith("rk-plan") for name in threads)
+
+    src = sweep_record.run(rec, VARY, {}, {}, 10.0, 1e-10, 1e-12, None, None, stream=5)
+    plan, done = src.plan, []
+
+    def failing(first, stop):                 # a chunk the planner refuses (as a value that is not finite is)
+        if first == 10:
+            raise InputError("the sweep's values are not all finite numbers.", where="sweep")
+        return plan(first, stop)
+
+    orig = src.integrate
+    monkeypatch.setattr(src, "plan", failing)
+    monkeypatch.setattr(src, "integrate", lambda first, *a: done.append(first) or orig(first, *a))
+    with pytest.raises(InputError, match="not all finite"):
+        write_sweep(src, tmp_path / "bad.csv", chunk=5)
+    assert done == [0, 5] and not (tmp_path / "bad.csv").exists()

@@ -209,9 +209,16 @@ class RecordSweep:
         self.events = [batch.Event(nm, o, d, term) for nm, o, d, term in rec["events"]]
         self.layout = Layout(rec["labels"], rec["parameters"], rec["n"])
 
-    def part(self, first: int, stop: int):
-        """Runs ``first`` … ``stop - 1``: their SweepResult."""
-        planned = self.planner(first, stop)
+    #: Chunks may be planned in a thread while the previous one is integrated (the planner is numpy only).
+    plan_ahead = True
+
+    def plan(self, first: int, stop: int):
+        """(inputs, P, Y) of runs ``first`` … ``stop - 1``, or None where a value is not finite."""
+        return self.planner(first, stop)
+
+    def part(self, first: int, stop: int, planned=None):
+        """Runs ``first`` … ``stop - 1`` (``planned``: their :meth:`plan`, made ahead): their SweepResult."""
+        planned = planned or self.planner(first, stop)
         if planned is None:
             raise InputError("the sweep's values are not all finite numbers.", where="sweep")
         return self.integrate(first, *planned)
