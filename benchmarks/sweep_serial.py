@@ -36,6 +36,8 @@ _CHILD = r"""
 import sys, time, json, threading
 T = {}
 def add(name, w, c):
+    if threading.current_thread().name.startswith("rk-plan"):
+        name += " (planning thread)"
     a = T.setdefault(name, [0.0, 0.0, 0]); a[0] += w; a[1] += c; a[2] += 1
 w0, c0 = time.perf_counter(), time.thread_time()
 import rigidkin.cli as cli
@@ -163,14 +165,15 @@ def main() -> None:
         for t, (data, wall, cpu) in steps_by_t.items():
             steps = data["steps"]
             inner = {k: v for k, v in steps.items() if not k.startswith("write_sweep")}
-            main_listed = sum(v[0] for k, v in inner.items() if "writer thread" not in k)
-            main_listed_c = sum(v[1] for k, v in inner.items() if "writer thread" not in k)
+            main_listed = sum(v[0] for k, v in inner.items() if "thread)" not in k)
+            main_listed_c = sum(v[1] for k, v in inner.items() if "thread)" not in k)
             rows = [["interpreter start and end (python -c pass)", start_w, start_c, ""]]
             rows += [[k, v[0], v[1], v[2]] for k, v in inner.items()]
             rows.append(["other main thread (waiting for the writer, printing, exit)",
                          data["main_wall"] - main_listed, data["main_cpu"] - main_listed_c, ""])
             rows.append(["the process", wall, cpu, ""])
-            print(table(f"{t} thread(s): the command step by step (writer thread steps overlap the main thread's)",
+            print(table(f"{t} thread(s): the command step by step (writer and planning thread steps overlap the main "
+                        "thread's)",
                         ["step", "wall s", "CPU s", "calls"], rows), flush=True)
         if args.profile:
             import cProfile
