@@ -195,13 +195,20 @@ def test_gpu_sweep_without_events_runs_to_the_end_time(cupy_on_host):
     np.testing.assert_allclose(g.result.y_end, c.result.y_end, rtol=1e-12, atol=1e-14)
 
 
-def test_command_backend_gpu_writes_the_c_backends_table(cupy_on_host, tmp_path, capsys):
+def test_command_backend_gpu_writes_the_c_backends_table(cupy_on_host, tmp_path, capsys, monkeypatch):
     """``rigidkin sweep --backend gpu``, first derived then answered from the numeric record, against the table
     of ``--backend c``: the same rows, numbers equal to 1e-12."""
+    from rigidkin.commands import sweep as command
+
+    monkeypatch.delenv("RIGIDKIN_NO_CACHE", raising=False)          # the record kept and read
+    routes = []
+    from_record = command._from_record
+    monkeypatch.setattr(command, "_from_record", lambda *a: routes.append(from_record(*a)) or routes[-1])
     args = ["sweep", "ladder", "--param", "theta=0.1:1.2:7", "l=1,3", "--stop-at", "N_A"]
     for name, backend in (("gpu1", "gpu"), ("gpu2", "gpu"), ("c", "c")):
         assert main([*args, "--backend", backend, "-o", str(tmp_path / f"{name}.csv")]) == 0
     assert len(cupy_on_host.kernels) == 2               # the derived sweep, then the record's
+    assert routes[0] is None and routes[1].model.backend == "gpu"
     capsys.readouterr()
 
     def rows(name):

@@ -236,3 +236,37 @@ def test_record_sweep_planned_ahead_writes_the_whole_sweeps_table(ladder, tmp_pa
     with pytest.raises(InputError, match="not all finite"):
         write_sweep(src, tmp_path / "bad.csv", chunk=5)
     assert done == [0, 5] and not (tmp_path / "bad.csv").exists()
+
+
+@needs_c
+def test_record_chunk_off_the_constraints_takes_the_full_route(tmp_path, monkeypatch, capsys):
+    """A repeat from the numeric record checks its first chunk's starts before it runs, and each later chunk's as
+    it is planned: a later chunk off the constraints (the foot x held where l = 1.9999 puts A off the wall) sends
+    the whole command back to the full route, which refuses it with the same paragraph as without the record, and
+    no table is left."""
+    import math
+
+    from rigidkin.numeric.sweeps import stream, sweep_record
+
+    monkeypatch.delenv("RIGIDKIN_NO_CACHE", raising=False)          # the record kept and read
+    monkeypatch.setattr(stream, "CHUNK", 5)
+    raised = []
+    checked_plan = sweep_record.Planner.checked_plan
+
+    def spy(self, first, stop):
+        try:
+            return checked_plan(self, first, stop)
+        except sweep_record.OffConstraints:
+            raised.append(first)
+            raise
+
+    monkeypatch.setattr(sweep_record.Planner, "checked_plan", spy)
+    fixed = ["--initial", "theta=0.3", f"x={2 * math.sin(0.3)!r}", "--stop-at", "N_A"]
+    assert main(["sweep", "ladder", "--param", "l=2,2", *fixed, "-o", str(tmp_path / "keep.csv")]) == 0   # the record
+    capsys.readouterr()
+    off = ["sweep", "ladder", "--param", "l=2,2,2,2,2,1.9999,1.9999", *fixed]
+    assert main([*off, "-o", str(tmp_path / "runs.csv")]) == 2
+    err = capsys.readouterr().err
+    assert raised == [5] and not (tmp_path / "runs.csv").exists()
+    assert main([*off, "--no-cache", "-o", str(tmp_path / "runs.csv")]) == 2
+    assert capsys.readouterr().err == err and "starts with contact A apart" in err
