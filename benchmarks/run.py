@@ -28,8 +28,8 @@ def main(argv=None) -> None:
     a = ap.parse_args(argv)
     plan = [
         ("rhs", lambda: rhs.main()),
-        ("sweep", lambda: sweep.main(["--dask"] + (["--baseline-runs", "30", "--chain-runs", "200"]
-                                                   if a.quick else []))),
+        ("sweep", lambda: sweep.main(["--dask"] + (["--baseline-runs", "30", "--chain-runs", "200",
+                                                    "--diffrax-runs", "10000"] if a.quick else []))),
         ("mujoco", lambda: mujoco_ladder.main([])),
         ("derivation", lambda: derivation.main(["--repeats", "1", "--max-n", "5"] if a.quick else [])),
         ("profile", lambda: profile_derivation.main(["--chain", "3"] if a.quick else [])),

@@ -3,6 +3,7 @@ engine alone on 10⁴ ladders and a chain of 5 rods, each against a solve_ivp lo
 
     python benchmarks/sweep.py [--command-runs 100000] [--baseline-runs 1000] [--runs 10000] [--dask]
     python benchmarks/sweep.py --command-only          # the whole command against the loop, nothing else
+    python benchmarks/sweep.py --diffrax-only [--diffrax-runs 10000 100000 1000000] [--jax-python PATH]
 
 The whole command is timed as a user meets it: a fresh process (``rigidkin sweep ladder --param
 theta=0.05:1.3:N --stop-at N_A -o runs.csv``, and ``-o runs.parquet`` when pyarrow is installed)
@@ -18,6 +19,12 @@ spread evenly over the grid, timed one by one, their mean times the number of ru
 extrapolation; the loop's own start, derivation and lambdify are not counted, which favours it).
 Every figure is given as CPU seconds (what the work costs) and wall seconds (what a person waits:
 on a shared machine it also counts the time other processes hold the cores).
+
+The anchor a JAX user would pick (``--diffrax-runs``, first): diffrax under ``vmap`` (``diffrax_ladder.py``, Tsit5,
+rtol 1e-10, event by Newton root finding, float64) started as a fresh process of an interpreter that has JAX
+(``--jax-python``; JAX is not a dependency of rigidkin, and without it these rows are skipped with a message),
+against rigidkin's integration of the same runs after compilation (1 thread and all cores) and its whole command
+(cache warm, and cold), size by size in the same run; each with its max |θ_event − acos(⅔ cos θ₀)|.
 """
 
 from __future__ import annotations
@@ -33,6 +40,7 @@ import tempfile
 import time
 from pathlib import Path
 
+import diffrax_ladder
 import numpy as np
 import sympy as sp
 from common import machine, median_time, table
@@ -161,6 +169,14 @@ def rigidkin_command() -> list[str]:
     return [str(script)] if script.exists() else [sys.executable, "-m", "rigidkin"]
 
 
+def child_env(tmp, cache) -> dict:
+    """The environment of a timed command: its cache folder, and its byte code kept (``PYTHONPYCACHEPREFIX``, under
+    ``tmp``) as an installed package's is, even where ``PYTHONDONTWRITEBYTECODE`` is set."""
+    env = dict(os.environ, RIGIDKIN_CACHE=str(cache), PYTHONPYCACHEPREFIX=str(Path(tmp) / "pyc"))
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
+
+
 def timed_command(argv: list[str], env: dict) -> tuple[float, float, str]:
     """(CPU s of the child and its children, wall s, stdout) of one command; raises on a non-zero exit."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -266,7 +282,7 @@ def command_rows(runs: int, base_runs: int, repeats: int):
     with tempfile.TemporaryDirectory(prefix="rk-sweep-bench-") as tmp:
         cache = Path(tmp) / "cache"
         cache.mkdir(mode=0o700)
-        env = dict(os.environ, RIGIDKIN_CACHE=str(cache))
+        env = child_env(tmp, cache)
         base = [*rigidkin_command(), "sweep", "ladder", "--param", f"theta=0.05:1.3:{runs}", "--stop-at", "N_A"]
         first = timed_command([*base, "-o", str(Path(tmp) / "first.csv")], env)
         for part in np.array_split(sample, repeats):
@@ -312,6 +328,97 @@ def command_rows(runs: int, base_runs: int, repeats: int):
     return rows, notes, step_rows
 
 
+# ---------------------------------------------------------------------------------------------------
+# the anchor a JAX user would pick: diffrax under vmap, same CPU, same run
+def rigidkin_integration(runs: int, threads: list[int], repeats: int) -> dict[int, tuple]:
+    """Per thread count: (wall s, CPU s — medians of ``repeats`` —, max |θ_event − acos(⅔ cos θ₀)|, max RHS
+    evaluations) of ``batch.integrate`` over ``runs`` ladders after compilation (the runs planned chunk by chunk
+    first, as the command does, not timed)."""
+    from rigidkin import examples
+    from rigidkin.numeric.compiled.batch import integrate
+    from rigidkin.numeric.sweeps.sweep import Prepared
+
+    prep = Prepared(examples.build("ladder"), {"theta": (0.05, 1.3, runs)}, stop_at="N_A", stream=65_536)
+    parts = [prep.plan(a, min(runs, a + 65_536))[1:] for a in range(0, runs, 65_536)]
+    P, Y = np.concatenate([p for p, _ in parts]), np.concatenate([y for _, y in parts])
+    del parts
+    _, events, model = prep._model(0)
+    integrate(model, Y[:100], P[:100], (0.0, 10.0), events)          # loaded, warm
+    out = {}
+    for w in threads:
+        walls, cpus = [], []
+        for _ in range(repeats):
+            c0, w0 = time.process_time(), time.perf_counter()
+            res = integrate(model, Y, P, (0.0, 10.0), events, workers=w)
+            walls.append(time.perf_counter() - w0)
+            cpus.append(time.process_time() - c0)
+        err = float(np.max(np.abs(res.event_y[:, 0, 0] - np.arccos(2 / 3 * np.cos(Y[:, 0])))))
+        out[w] = (statistics.median(walls), statistics.median(cpus), err, int(np.max(res.nfev)))
+    return out
+
+
+def anchor_rows(sizes: list[int], python: str | None, repeats: int = 3):
+    """rigidkin (integration after compilation; the whole command, cached and cold) against diffrax ``vmap``
+    (integration after compilation; the whole process) on this machine, size by size, interleaved.  Medians of
+    ``repeats`` up to 10⁵ runs, one run above."""
+    from rigidkin.numeric.compiled.batch import default_workers
+
+    rows, notes = [], []
+    if python is None:
+        return rows, ["diffrax rows skipped: no interpreter with JAX and diffrax (pip install jax diffrax in a "
+                      "separate environment, then --jax-python PATH or $RIGIDKIN_JAX_PYTHON)"]
+    with tempfile.TemporaryDirectory(prefix="rk-anchor-") as tmp:
+        cache = Path(tmp) / "cache"
+        cache.mkdir(mode=0o700)
+        env = child_env(tmp, cache)
+        for runs in sizes:
+            k = repeats if runs <= 100_000 else 1
+            argv = [*rigidkin_command(), "sweep", "ladder", "--param", f"theta=0.05:1.3:{runs}", "--stop-at", "N_A",
+                    "-o", str(Path(tmp) / "runs.csv")]
+            cold_env = dict(env, RIGIDKIN_CACHE=str(Path(tmp) / f"cold{runs}"))
+            Path(cold_env["RIGIDKIN_CACHE"]).mkdir(mode=0o700)
+            cold_cpu, cold_wall, _ = timed_command(argv, cold_env)
+            timed_command(argv[:-1] + [str(Path(tmp) / "warm.csv")], env)                # fill the cache
+            whole = [timed_command(argv, env)[:2] for _ in range(k)]
+            cmd_cpu, cmd_wall = statistics.median(c for c, _ in whole), statistics.median(w for _, w in whole)
+            load = os.getloadavg()[0]
+            threads = sorted({1, default_workers()})
+            mine = rigidkin_integration(runs, threads, repeats)
+            for w in threads:
+                wall, cpu, err, nfev = mine[w]
+                rows.append([f"rigidkin C, DOP853, {w} thread(s)", f"{runs:,}", wall, cpu,
+                             cmd_wall if w > 1 else None, cmd_cpu if w > 1 else None,
+                             cold_wall if w > 1 else None, f"{err:.1e}", nfev, f"{load:.1f}"])
+            d = diffrax_ladder.run(python, runs, repeats=k)
+            if "error" in d:
+                notes.append(f"diffrax, {runs:,} runs: failed: {d['error']}")
+                continue
+            rows.append([f"diffrax {d['diffrax']} vmap, Tsit5 (JAX {d['jax']}, {d['device']})", f"{runs:,}",
+                         d["integrate_s"], d["integrate_cpu_s"], d["process_s"], d["process_cpu_s"], None,
+                         f"{d['max_err']:.1e}", f"~{6 * d['max_steps']}", f"{os.getloadavg()[0]:.1f}"])
+            best = min(mine.values())[0]
+            notes.append(f"{runs:,} runs: diffrax / rigidkin = {d['integrate_s'] / best:.1f}× integrating (wall, "
+                         f"rigidkin's faster thread count), {d['integrate_cpu_s'] / mine[1][1]:.1f}× (CPU, rigidkin "
+                         f"on 1 thread); whole process {d['process_s'] / cmd_wall:.1f}× (wall), "
+                         f"{d['process_cpu_s'] / cmd_cpu:.1f}× (CPU); diffrax compile {d['compile_s']:.1f} s, import "
+                         f"{d['import_s']:.1f} s, {d['missed']} runs without the event; medians of {k}")
+    notes.append("integrate: after compilation (rigidkin: batch.integrate on the planned runs; diffrax: the "
+                 "AOT-compiled jit(vmap(solve)), results on the host); whole: a fresh process, wall and CPU "
+                 "(rigidkin: `rigidkin sweep ... -o runs.csv`, cache folder warm; cold: an empty one — derive, "
+                 "generate and compile C; diffrax: import, trace, compile, integrate, no table written).  Both "
+                 "rtol 1e-10, atol 1e-12, float64; events located by Brent (rigidkin) / Newton (diffrax).  f evals: "
+                 "rigidkin's count; diffrax's steps × 6 (Tsit5, first same as last; root finding not counted).  "
+                 "load: the 1-minute load average when the row was taken.")
+    return rows, notes
+
+
+def print_anchor(sizes: list[int], python: str | None) -> None:
+    rows, notes = anchor_rows(sizes, python)
+    print(table("Ladders to wall-contact loss: rigidkin against diffrax vmap on this CPU (seconds)",
+                ["what", "runs", "integrate wall", "integrate CPU", "whole wall", "whole CPU", "whole cold wall",
+                 "max |θ − acos(⅔cos θ0)|", "max f evals", "load"], rows, "\n".join(notes)), flush=True)
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--command-runs", type=int, default=100_000, help="ladders in the whole command")
@@ -322,8 +429,16 @@ def main(argv=None) -> None:
     ap.add_argument("--baseline-runs", type=int, default=1000, help="solve_ivp runs sampled for the whole command")
     ap.add_argument("--engine-baseline-runs", type=int, default=100, help="solve_ivp runs sampled for the engine")
     ap.add_argument("--dask", action="store_true", help="also time a Dask LocalCluster sweep")
+    ap.add_argument("--diffrax-runs", type=int, nargs="*", default=[10_000, 100_000],
+                    help="sizes of the comparison with diffrax vmap (none: skip it)")
+    ap.add_argument("--diffrax-only", action="store_true", help="only the comparison with diffrax")
+    ap.add_argument("--jax-python", help="an interpreter with JAX and diffrax (default: diffrax_ladder.jax_python)")
     a = ap.parse_args(argv)
     print(f"# Batch sweeps ({machine()})", flush=True)
+    if a.diffrax_runs and not a.command_only:
+        print_anchor(a.diffrax_runs, diffrax_ladder.jax_python(a.jax_python))
+    if a.diffrax_only:
+        return
     rows, notes, steps = command_rows(a.command_runs, a.baseline_runs, a.repeats)
     print(table(f"Whole command: {a.command_runs:,} ladders to wall-contact loss (CPU and wall seconds)",
                 ["what", "runs", "CPU s median", "CPU s best", "wall s median", "speed-up CPU median",

@@ -181,3 +181,84 @@ def test_gpu_kernel_source_parses_as_cuda_cpp(ladder, tmp_path):
         r = subprocess.run(["g++", "-std=c++14", "-fsyntax-only", "-w", str(f)], capture_output=True, text=True)
         assert r.returncode == 0, r.stderr[:2000]
     assert 'extern "C" __global__' in src.split("#else")[0]
+
+
+@needs_c
+def test_record_sweep_planned_ahead_writes_the_whole_sweeps_table(ladder, tmp_path, monkeypatch):
+    """A repeat answered from the numeric record plans each chunk in a thread while the one before is integrated:
+    the table is still the whole sweep's, byte for byte, every chunk planned once and in order; a chunk the planner
+    refuses stops the sweep at that chunk, after the earlier ones, and no table is left."""
+    from rigidkin.numeric.sweeps import sweep_record
+
+    whole = tmp_path / "whole.csv"
+    res = sweep(ladder, VARY, stop_at="N_A", keep_record=True)
+    res.write(whole)
+    rec = res.record
+    assert rec is not None
+    src = sweep_record.run(rec, VARY, {}, {}, 10.0, 1e-10, 1e-12, None, None, stream=5)
+    assert src.plan_ahead
+    calls, threads = [], set()
+    plan = src.plan
+
+    def spy(first, stop):
+        import threading
+
+        calls.append((first, stop))
+        threads.add(threading.current_thread().name)
+        return plan(first, stop)
+
+    monkeypatch.setattr(src, "plan", spy)
+    streamed = tmp_path / "streamed.csv"
+    write_sweep(src, streamed, chunk=5)
+    assert streamed.read_bytes() == whole.read_bytes()
+    assert calls == [(a, min(36, a + 5)) for a in range(0, 36, 5)]
+    assert all(name.startswith("rk-plan") for name in threads)
+
+    src = sweep_record.run(rec, VARY, {}, {}, 10.0, 1e-10, 1e-12, None, None, stream=5)
+    plan, done = src.plan, []
+
+    def failing(first, stop):                 # a chunk the planner refuses (as a value that is not finite is)
+        if first == 10:
+            raise InputError("the sweep's values are not all finite numbers.", where="sweep")
+        return plan(first, stop)
+
+    orig = src.integrate
+    monkeypatch.setattr(src, "plan", failing)
+    monkeypatch.setattr(src, "integrate", lambda first, *a: done.append(first) or orig(first, *a))
+    with pytest.raises(InputError, match="not all finite"):
+        write_sweep(src, tmp_path / "bad.csv", chunk=5)
+    assert done == [0, 5] and not (tmp_path / "bad.csv").exists()
+
+
+@needs_c
+def test_record_chunk_off_the_constraints_takes_the_full_route(tmp_path, monkeypatch, capsys):
+    """A repeat from the numeric record checks its first chunk's starts before it runs, and each later chunk's as
+    it is planned: a later chunk off the constraints (the foot x held where l = 1.9999 puts A off the wall) sends
+    the whole command back to the full route, which refuses it with the same paragraph as without the record, and
+    no table is left."""
+    import math
+
+    from rigidkin.numeric.sweeps import stream, sweep_record
+
+    monkeypatch.delenv("RIGIDKIN_NO_CACHE", raising=False)          # the record kept and read
+    monkeypatch.setattr(stream, "CHUNK", 5)
+    raised = []
+    checked_plan = sweep_record.Planner.checked_plan
+
+    def spy(self, first, stop):
+        try:
+            return checked_plan(self, first, stop)
+        except sweep_record.OffConstraints:
+            raised.append(first)
+            raise
+
+    monkeypatch.setattr(sweep_record.Planner, "checked_plan", spy)
+    fixed = ["--initial", "theta=0.3", f"x={2 * math.sin(0.3)!r}", "--stop-at", "N_A"]
+    assert main(["sweep", "ladder", "--param", "l=2,2", *fixed, "-o", str(tmp_path / "keep.csv")]) == 0   # the record
+    capsys.readouterr()
+    off = ["sweep", "ladder", "--param", "l=2,2,2,2,2,1.9999,1.9999", *fixed]
+    assert main([*off, "-o", str(tmp_path / "runs.csv")]) == 2
+    err = capsys.readouterr().err
+    assert raised == [5] and not (tmp_path / "runs.csv").exists()
+    assert main([*off, "--no-cache", "-o", str(tmp_path / "runs.csv")]) == 2
+    assert capsys.readouterr().err == err and "starts with contact A apart" in err

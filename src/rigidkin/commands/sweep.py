@@ -122,6 +122,7 @@ def run(args) -> int:
     from ..numeric.sweeps.gpu import resolve_backend
     from ..numeric.sweeps.stream import CHUNK, write_sweep
     from ..numeric.sweeps.summary import Summary
+    from ..numeric.sweeps.sweep_record import OffConstraints
     from ..numeric.sweeps.tables import require_parquet, table_format
 
     check_target(args.output, "the sweep table")
@@ -141,30 +142,23 @@ def run(args) -> int:
     start = time.perf_counter()
     source = _from_record(args, raw, sets, initial, mode, backend, CHUNK) \
         if scheduler is None and backend != "numpy" else None
-    derived = None
+    derived = units = None
     if source is None:
-        from ..numeric.sweeps.sweep import Prepared
-
-        derived = guarded(args, open_problem, args)
-        system = derived.system
-        units = units_of(system)
-        vary = parse_axes(raw, units)
-        initial = checked_values(initial, units, "--initial")
-        stop_at = checked_events(args.stop_at, units, "--stop-at")
-        record = checked_events(args.record, units, "--record")
-        source = Prepared(system, vary, params=sets, initial=initial, t_end=args.t_end, stop_at=stop_at or None,
-                          record=record, mode=mode, rtol=args.rtol, atol=args.atol,
-                          workers=args.workers if scheduler else args.threads, scheduler=scheduler, chunk=args.chunk,
-                          backend=backend, keep_record=not args.no_cache, stream=CHUNK)
+        derived, source, vary, units = _full_route(args, raw, sets, initial, mode, scheduler, backend, CHUNK)
     else:
         vary = source.vary
     set_step(f"Sweeping {source.runs:,} runs")
     x_axes, y_column = _plot_columns(args, list(raw)) if args.plot else ((), None)
-    summary = Summary(source.runs, keep=(*x_axes, y_column) if args.plot else ())
+    keep = (*x_axes, y_column) if args.plot else ()
     progress = _Progress(sys.stderr.isatty() and source.runs > CHUNK)
     start = time.perf_counter() if derived is not None else start
     try:
-        summary, first = write_sweep(source, args.output, progress=progress, summary=summary)
+        try:
+            summary, first = write_sweep(source, args.output, progress=progress, summary=Summary(source.runs, keep))
+        except OffConstraints:        # a later chunk starts off the record's constraints: all again, the full way
+            derived, source, vary, units = _full_route(args, raw, sets, initial, mode, scheduler, backend, CHUNK)
+            start = time.perf_counter()
+            summary, first = write_sweep(source, args.output, progress=progress, summary=Summary(source.runs, keep))
     finally:
         progress.close()
     if derived is not None:
@@ -189,6 +183,25 @@ def run(args) -> int:
     if bad:
         say(f"rigidkin: warning: some runs ended early ({', '.join(bad)}); see the status column.", file=sys.stderr)
     return 0
+
+
+def _full_route(args, raw, sets, initial, mode, scheduler, backend, stream):
+    """The sweep derived from the problem (the derivation cache, or sympy): (the opened problem, the
+    :class:`~rigidkin.numeric.sweeps.sweep.Prepared` sweep, its axes in SI, the units of its quantities)."""
+    from ..numeric.sweeps.sweep import Prepared
+
+    derived = guarded(args, open_problem, args)
+    system = derived.system
+    units = units_of(system)
+    vary = parse_axes(raw, units)
+    initial = checked_values(initial, units, "--initial")
+    stop_at = checked_events(args.stop_at, units, "--stop-at")
+    record = checked_events(args.record, units, "--record")
+    source = Prepared(system, vary, params=sets, initial=initial, t_end=args.t_end, stop_at=stop_at or None,
+                      record=record, mode=mode, rtol=args.rtol, atol=args.atol,
+                      workers=args.workers if scheduler else args.threads, scheduler=scheduler, chunk=args.chunk,
+                      backend=backend, keep_record=not args.no_cache, stream=stream)
+    return derived, source, vary, units
 
 
 def _axis_values(vary) -> dict:

@@ -8,7 +8,9 @@ events located by the same Brent iteration to 4 ε in time — its table matches
 rounding of the GPU's libm (a few ulp per step), not merely to the tolerance.  JAX would need a second code
 generator and a second integrator (diffrax's Tsit5), whose tables differ from the C backend's at rtol.
 CuPy is a thin, well-kept layer (RawModule, device arrays); it is not needed to install or test rigidkin: the
-device source is compiled as plain C and run on the CPU in the tests, where the shim maps it to the host.
+device source is compiled as plain C and run on the CPU in the tests, where the shim maps it to the host, and its
+CUDA branch is compiled by the host's C++ compiler and launched thread by thread behind a stand-in for the CuPy
+calls made here, which checks every launch argument against the kernel's signature (``tests/test_gpu_launch_cpu.py``).
 
 ``backend="auto"`` picks the GPU only when CuPy imports and sees a device; ``backend="gpu"`` without one is an
 InputError that says what is missing.

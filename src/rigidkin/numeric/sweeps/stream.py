@@ -3,9 +3,11 @@
 The runs are planned (the grid's values at those runs, each state completed), integrated, summarised and
 written :data:`CHUNK` at a time, in the order of the whole grid; a thread writes one chunk's table (CSV text,
 or a Parquet row group) while the next chunk is integrated (the compiled integrator releases the GIL), so the
-table's formatting overlaps the integration.  At most :data:`~rigidkin.numeric.sweeps.sweep_plan.IN_FLIGHT`
-chunks are alive at once.  The table is the one the whole sweep would write: the same rows, the same bytes
-for CSV, the same values for Parquet (one row group a chunk).
+table's formatting overlaps the integration; a sweep answered from its numeric record also plans the next chunk
+in a thread meanwhile (numpy only), so nothing per run is left serial on the main thread but the summary.  At
+most :data:`~rigidkin.numeric.sweeps.sweep_plan.IN_FLIGHT` chunks are alive at once.  The table is the one the
+whole sweep would write: the same rows, the same bytes for CSV, the same values for Parquet (one row group a
+chunk).
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from __future__ import annotations
 import queue
 import threading
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 
 from ...base.outfile import writing
 from .summary import Summary
@@ -40,9 +43,10 @@ def write_sweep(source, path, chunk: int | None = None, progress: Callable[[int,
     with writing(path, "the sweep table", binary=parquet) as fh:
         writer = threading.Thread(target=_writer, args=(jobs, fh, parquet, failure), daemon=True)
         writer.start()
+        ahead = _Ahead(source, runs, chunk)
         try:
             for a in range(0, runs, chunk):
-                part = source.part(a, min(runs, a + chunk))
+                part = ahead.part(a)
                 if first_part is None:
                     first_part = part
                 summary.add(part)
@@ -61,11 +65,38 @@ def write_sweep(source, path, chunk: int | None = None, progress: Callable[[int,
                 if progress is not None:
                     progress(min(runs, a + chunk), runs)
         finally:
+            ahead.close()
             jobs.put(None)
             writer.join()
         if failure:
             raise failure[0]
     return summary, first_part
+
+
+class _Ahead:
+    """The chunks of ``source`` integrated in order, each planned in a thread while the one before is integrated,
+    where the source allows it (``plan_ahead``: a planner of numpy only); else each planned when its turn comes."""
+
+    def __init__(self, source, runs: int, chunk: int):
+        self.source, self.runs, self.chunk = source, runs, chunk
+        self.pool = self.next = None
+        if getattr(source, "plan_ahead", False) and runs > chunk:
+            self.pool = ThreadPoolExecutor(1, thread_name_prefix="rk-plan")
+            self.next = self.pool.submit(source.plan, 0, min(runs, chunk))
+
+    def part(self, a: int):
+        """The result of the chunk that starts at run ``a``."""
+        stop = min(self.runs, a + self.chunk)
+        if self.pool is None:
+            return self.source.part(a, stop)
+        planned = self.next.result()                      # a planning error is raised here, at its chunk
+        self.next = self.pool.submit(self.source.plan, stop, min(self.runs, stop + self.chunk)) \
+            if stop < self.runs else None
+        return self.source.part(a, stop, planned=planned)
+
+    def close(self) -> None:
+        if self.pool is not None:
+            self.pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _writer(jobs: queue.Queue, fh, parquet: bool, failure: list) -> None:

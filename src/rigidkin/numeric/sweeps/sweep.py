@@ -348,7 +348,7 @@ class Prepared:
                 if sub_progress:
                     sub_progress(len(idx), len(idx))
                 used = model.backend
-                if self.keep_record and self.n_regimes == 1 and used == "c" and self.record_kept is None:
+                if self.keep_record and self.n_regimes == 1 and used in ("c", "gpu") and self.record_kept is None:
                     self.record_kept = _record(system, mode, layout, k, bev)
             else:
                 res = integrate_dask(k, Y[idx], P[idx], (0.0, self.t_end), bev, self.rtol, self.atol, self.max_step,

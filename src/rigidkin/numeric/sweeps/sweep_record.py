@@ -127,11 +127,17 @@ def planner_of(rec: dict, vary: dict, params: dict, initial: dict, stream: int |
     runs = check_runs([axis_length(spec) for spec in vary.values()], n_c, n_p, len(rec["events"]) + 2 * n_con + 2,
                       chunk=stream)
     planner = Planner(rec, axes_of(vary), base_p, Y0, given, runs)
-    step = int(stream or runs) or 1
-    for first in range(0, runs, step):      # a start off its constraints: the full route assembles it or says why
-        if not planner.on_constraints(first, min(runs, first + step)):
-            return None
+    # A start off its constraints: the full route assembles it or says why.  A sweep held whole is checked here;
+    # a streamed one here for its first chunk, and each later chunk as it is planned (OffConstraints).
+    if not planner.on_constraints(0, min(runs, int(stream or runs) or 1)):
+        return None
+    planner.checked = int(stream or runs) or 1
     return planner
+
+
+class OffConstraints(Exception):
+    """A chunk of a streamed sweep has starts off the record's constraints: the sweep must take the full route
+    (which assembles them, or says why not) from the beginning."""
 
 
 class Planner:
@@ -140,6 +146,7 @@ class Planner:
 
     def __init__(self, rec, axes, base_p, y0, given, runs):
         self.rec, self.axes, self.base_p, self.y0, self.given, self.runs = rec, axes, base_p, y0, given, runs
+        self.checked = 0            # runs before this one were checked against the constraints by planner_of
 
     def __call__(self, first: int, stop: int):
         rec, given = self.rec, set(self.given)
@@ -153,9 +160,17 @@ class Planner:
             return None
         return inputs, P, Y
 
-    def on_constraints(self, first: int, stop: int) -> bool:
-        """Whether every start of runs ``first`` … ``stop - 1`` lies on the record's position constraints."""
+    def checked_plan(self, first: int, stop: int):
+        """:meth:`__call__`, and runs past those :func:`planner_of` checked held to the constraints (OffConstraints)."""
         planned = self(first, stop)
+        if planned is not None and stop > self.checked and not self.on_constraints(first, stop, planned):
+            raise OffConstraints(first)
+        return planned
+
+    def on_constraints(self, first: int, stop: int, planned=None) -> bool:
+        """Whether every start of runs ``first`` … ``stop - 1`` (``planned``: their plan, made already) lies on the
+        record's position constraints."""
+        planned = planned or self(first, stop)
         if planned is None:
             return True             # not finite: said when the chunk is run
         _, P, Y = planned
@@ -209,9 +224,17 @@ class RecordSweep:
         self.events = [batch.Event(nm, o, d, term) for nm, o, d, term in rec["events"]]
         self.layout = Layout(rec["labels"], rec["parameters"], rec["n"])
 
-    def part(self, first: int, stop: int):
-        """Runs ``first`` … ``stop - 1``: their SweepResult."""
-        planned = self.planner(first, stop)
+    #: Chunks may be planned in a thread while the previous one is integrated (the planner is numpy only).
+    plan_ahead = True
+
+    def plan(self, first: int, stop: int):
+        """(inputs, P, Y) of runs ``first`` … ``stop - 1``, or None where a value is not finite; OffConstraints where
+        a start is off the constraints."""
+        return self.planner.checked_plan(first, stop)
+
+    def part(self, first: int, stop: int, planned=None):
+        """Runs ``first`` … ``stop - 1`` (``planned``: their :meth:`plan`, made ahead): their SweepResult."""
+        planned = planned or self.plan(first, stop)
         if planned is None:
             raise InputError("the sweep's values are not all finite numbers.", where="sweep")
         return self.integrate(first, *planned)

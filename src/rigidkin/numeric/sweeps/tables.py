@@ -211,32 +211,55 @@ def _arrow_blocks(arrays: list[np.ndarray], rows: int, block_rows: int):
 
 def _arrow_block(arrays: list[np.ndarray]) -> str:
     """CSV lines of one block, byte for byte those of the Python formatter: floats as their shortest
-    round-trip text (pyarrow's, with ``.0`` after a whole number as ``repr`` writes it; outside
-    ``_ARROW_RANGE``, where the two write exponents differently, ``repr`` itself), NaN as an empty cell."""
+    round-trip text (pyarrow's; whole numbers, which pyarrow writes without ``.0``, and values outside
+    ``_ARROW_RANGE``, where the two write exponents differently, by ``repr`` itself), NaN as an empty cell.
+    A column equal bit for bit to an earlier one (a run's final state when it ended at its event) reuses its
+    text, a constant column (a fixed parameter) is formatted once, and the lines are joined inside pyarrow:
+    no Python object per row."""
     import pyarrow as pa
     import pyarrow.compute as pc
 
-    cells = []
+    rows = len(arrays[0])
+    cells, done = [], []                         # done: (bits, text) of the float columns formatted so far
     for a in arrays:
         kind = a.dtype.kind
         if kind == "f":
             a = np.ascontiguousarray(a, dtype=np.float64)
-            nan = np.isnan(a)
-            text = pc.cast(pa.array(a, mask=nan if nan.any() else None, type=pa.float64()), pa.string())
-            whole = pc.match_substring_regex(text, r"^-?[0-9]+$")
-            text = pc.if_else(whole, pc.binary_join_element_wise(text, pa.scalar(".0"), ""), text)
-            mag = np.abs(a)
-            other = ~nan & (mag != 0) & np.isfinite(a) & ((mag < _ARROW_RANGE[0]) | (mag >= _ARROW_RANGE[1]))
-            if other.any():
-                text = pc.replace_with_mask(text, pa.array(other),
-                                            pa.array([repr(v) for v in a[other].tolist()], type=pa.string()))
+            bits = a.view(np.int64)
+            text = next((t for b, t in done if np.array_equal(b, bits)), None)
+            if text is None:
+                text = _arrow_floats(pa, pc, a, bits)
+                done.append((bits, text))
         elif kind in "iu":
             text = pc.cast(pa.array(a.astype(np.int64)), pa.string())
         else:
             text = pa.array(_cells(a, _FloatCells(len(a))), type=pa.string())
         cells.append(text)
+    if all(isinstance(c, pa.Scalar) for c in cells):
+        cells[0] = pa.repeat(cells[0], rows)
+    cells[-1] = pc.binary_join_element_wise(cells[-1], pa.scalar("\r\n"), "")     # each line's end
     lines = pc.binary_join_element_wise(*cells, ",", null_handling="replace", null_replacement="")
-    return "\r\n".join(lines.to_pylist()) + "\r\n"
+    if isinstance(lines, pa.Scalar):
+        lines = pa.repeat(lines, rows)
+    width = 8 if pa.types.is_large_string(lines.type) else 4
+    offsets = np.frombuffer(lines.buffers()[1], dtype=np.int64 if width == 8 else np.int32)
+    start, stop = int(offsets[lines.offset]), int(offsets[lines.offset + len(lines)])
+    return bytes(memoryview(lines.buffers()[2])[start:stop]).decode("utf-8")
+
+
+def _arrow_floats(pa, pc, a: np.ndarray, bits: np.ndarray):
+    """The text of one float column (a pyarrow string array, or a scalar when every value is the same)."""
+    if bits.size and bool(np.all(bits == bits[0])):
+        return pa.scalar(_text_cell(float(a[0])), type=pa.string())
+    nan = np.isnan(a)
+    text = pc.cast(pa.array(a, mask=nan if nan.any() else None, type=pa.float64()), pa.string())
+    with np.errstate(invalid="ignore"):
+        mag = np.abs(a)
+        other = ~nan & np.isfinite(a) & ((a == np.trunc(a)) | (mag < _ARROW_RANGE[0]) | (mag >= _ARROW_RANGE[1]))
+    if other.any():
+        text = pc.replace_with_mask(text, pa.array(other),
+                                    pa.array([repr(v) for v in a[other].tolist()], type=pa.string()))
+    return text
 
 
 def write_csv(columns: Mapping[str, np.ndarray], path, what: str = "the table",
@@ -266,13 +289,24 @@ def arrow_table(columns: Mapping[str, np.ndarray], metadata: Mapping[str, str] |
         elif kind == "b":
             out.append(pa.array(a, type=pa.bool_()))
         else:                                   # text: each distinct value once, and a code per row
-            labels: dict = {}
-            codes = [labels.setdefault(v, len(labels)) for v in a.tolist()]
-            words = [None if v is None else str(v) for v in labels]
-            out.append(pa.DictionaryArray.from_arrays(pa.array(np.asarray(codes, dtype=np.int32)),
-                                                      pa.array(words, type=pa.string())))
+            out.append(_dictionary(pa, a))
     meta = {str(k).encode(): str(v).encode() for k, v in (metadata or {}).items()}
     return pa.Table.from_arrays(out, names=names).replace_schema_metadata(meta or None)
+
+
+def _dictionary(pa, a: np.ndarray):
+    """A text column dictionary-encoded, the words in order of first appearance: by pyarrow where every value is a
+    string (no Python work per row), else value by value."""
+    if all(isinstance(v, str) for v in a[:: max(1, a.size // 64)].tolist()):
+        try:
+            return pa.array(a, type=pa.string()).dictionary_encode()
+        except (pa.ArrowInvalid, pa.ArrowTypeError):
+            pass
+    labels: dict = {}
+    codes = [labels.setdefault(v, len(labels)) for v in a.tolist()]
+    words = [None if v is None else str(v) for v in labels]
+    return pa.DictionaryArray.from_arrays(pa.array(np.asarray(codes, dtype=np.int32)),
+                                          pa.array(words, type=pa.string()))
 
 
 def write_parquet(columns: Mapping[str, np.ndarray], path, what: str = "the table",
