@@ -184,6 +184,7 @@ def test_block_on_an_accelerating_cart_by_dalembert():
     assert {"N_1", "N_2"} <= set(r.reactions)
 
 
+@pytest.mark.slow
 def test_solve_command_states_it_in_text_and_json(tmp_path, capsys):
     f = tmp_path / "block.toml"
     f.write_text(BLOCK_TOML)

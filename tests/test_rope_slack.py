@@ -357,6 +357,7 @@ def test_a_jerk_while_a_contact_touches_is_refused_with_its_reason():
     assert res.t_final == pytest.approx(brentq(back, grid[j], grid[j + 1], xtol=1e-15), rel=1e-8)
 
 
+@pytest.mark.slow
 def test_a_swinging_yoyo_retightens_where_the_geometry_says_and_jerks_by_impulse_momentum():
     """The centre free in x and y (the string swings). From the state where it goes slack: a parabola with
     constant spin; the string, fixed to the drum where it left it (the material point P_s), is taut again
