@@ -188,7 +188,8 @@ def _landing(ev, mu):
     return (S - d) / 2, (S + d) / 2, vx + Fx / M, -(0.5 * M * (vx**2 + vy**2) + 0.5 * I_G * w**2)
 
 
-@pytest.mark.parametrize("friction, w0, mu", [pytest.param(0.5, 13.0, 0.5, marks=pytest.mark.slow), ("smooth", 20.0, 0.0)])
+@pytest.mark.parametrize("friction, w0, mu", [pytest.param(0.5, 13.0, 0.5, marks=pytest.mark.slow),
+                                              ("smooth", 20.0, 0.0)])
 def test_half_disk_rolls_off_its_arc_onto_its_flat_face(friction, w0, mu):
     """Fast enough to pass G over the edge (½ I_E ω1² > m g (ρ − r)) it falls onto the flat face: E1 lands with an
     impact (impulses by hand, energy lost), then it rests on both edges with N1 = N2 = m g/2 (statics: G midway)."""
