@@ -34,6 +34,7 @@ class Manifold:
         gaps = [algebra.substitute(g, coord_map) if coord_map else g for g in gaps]
         dep = [q for q in red.dependent if q not in coord_map and any(g.has(q) for g in gaps)]
         self.active = bool(dep)
+        self._samples: dict = {}
         if not self.active:
             return
         gaps = [g for g in gaps if g.has(*dep)]
@@ -54,6 +55,17 @@ class Manifold:
             syms = sorted(p.free_symbols - {t}, key=str)
             name = algebra.plain_state(q.diff(t))[0]
             self.rates.append((name, syms, sp.lambdify(syms + [t], p, modules="mpmath")))
+
+    def sample(self, seed: int, i: int) -> tuple[float, dict | None]:
+        """(t, admissible state) number ``i`` of the stream ``seed``: drawn once, the same for every
+        comparison that asks (Newton's method at 30 digits is the cost of a draw)."""
+        key = (seed, i)
+        if key not in self._samples:
+            rng = random.Random(f"manifold-{seed}-{i}")
+            tv = rng.uniform(0.1, 1.0)
+            self._samples[key] = (tv, self.draw(rng, tv))
+        tv, drawn = self._samples[key]
+        return tv, None if drawn is None else dict(drawn)
 
     def draw(self, rng: random.Random, t_value: float, known: dict | None = None) -> dict | None:
         """{plain symbol: value} of an admissible state (the gaps' symbols, the dependent coordinates and
@@ -106,12 +118,18 @@ class Manifold:
 
 
 def manifold_of(solution) -> Manifold | None:
-    """The solution's admissible-state sampler, or None when no dependent coordinate is left implicit."""
+    """The solution's admissible-state sampler, or None when no dependent coordinate is left implicit
+    (made once per solution: its draws are kept for every comparison)."""
+    kept = solution.__dict__.get("_manifold", False)
+    if kept is not False:
+        return kept
     try:
         m = Manifold(solution)
     except (AttributeError, TypeError, ValueError):
-        return None
-    return m if m.active else None
+        m = None
+    m = m if m is not None and m.active else None
+    solution.__dict__["_manifold"] = m
+    return m
 
 
 def _initial(system, q) -> float:
