@@ -45,8 +45,8 @@ def _values(exprs, seed: int = 7, n: int = 2) -> list:
     out = []
     with mpmath.workdps(DIGITS):
         for k in range(n):
-            rng = random.Random(f"{seed}-{k}")
-            args = [mpmath.mpf(rng.uniform(0.3, 1.3)) for _ in syms]
+            # each symbol's value from its own name: the same state whichever symbols an expression keeps
+            args = [mpmath.mpf(random.Random(f"{seed}-{k}-{s.name}").uniform(0.3, 1.3)) for s in syms]
             try:
                 vals = fn(*args)
             except (ZeroDivisionError, ValueError):
