@@ -8,6 +8,7 @@ relative tolerance ``RTOL``.  Used by the cross-check of the laws, ``check --exp
 from __future__ import annotations
 
 import random
+import weakref
 
 import numpy as np
 import sympy as sp
@@ -160,12 +161,12 @@ class Sampler:
 
     def accelerations(self, regime, coords, i: int) -> dict:
         """{plain q̈ symbol: value} at point ``i`` from the regime's M q̈ = f, solved numerically."""
-        made = regime.__dict__.get("_numeric_mf")      # kept on the regime: every law is compared with it
+        made = _NUMERIC_MF.get(regime)      # kept while the regime lives: every law is compared with it
         if made is None:
             M, f = regime.raw_mass_matrix, regime.raw_forcing       # as derived: equal, nothing to simplify
             plain, _ = algebra.plain_state(M.row_join(f))
             syms = sorted(plain.free_symbols, key=str)
-            made = regime.__dict__["_numeric_mf"] = (syms, evaluator(plain, syms))
+            made = _NUMERIC_MF[regime] = (syms, evaluator(plain, syms))
         syms, fn = made
         with np.errstate(all="ignore"):
             Mf = np.array(fn(*[self._value(i, s) for s in syms]), dtype=complex)
@@ -183,6 +184,9 @@ class Sampler:
 
 
 _PLAIN_ACC: dict = {}
+#: Each regime's M | f ready to evaluate (not on the regime itself: numeric functions are not pickled with
+#: a derivation).
+_NUMERIC_MF: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
 def _plain_acc(q):

@@ -10,6 +10,7 @@ cannot close is drawn again) and gives the dependent rates from the rate relatio
 from __future__ import annotations
 
 import random
+import weakref
 
 import mpmath
 import sympy as sp
@@ -120,16 +121,23 @@ class Manifold:
 def manifold_of(solution) -> Manifold | None:
     """The solution's admissible-state sampler, or None when no dependent coordinate is left implicit
     (made once per solution: its draws are kept for every comparison)."""
-    kept = solution.__dict__.get("_manifold", False)
-    if kept is not False:
-        return kept
+    kept = _KEPT.get(id(solution))
+    if kept is not None and kept[0]() is solution:
+        return kept[1]
     try:
         m = Manifold(solution)
     except (AttributeError, TypeError, ValueError):
         m = None
     m = m if m is not None and m.active else None
-    solution.__dict__["_manifold"] = m
+    for k in [k for k, (ref, _) in _KEPT.items() if ref() is None]:
+        del _KEPT[k]
+    _KEPT[id(solution)] = (weakref.ref(solution), m)
     return m
+
+
+#: id(solution) → (weak reference to it, its Manifold): kept beside the solution, not in it (numeric
+#: functions are not pickled with a derivation).
+_KEPT: dict = {}
 
 
 def _initial(system, q) -> float:
