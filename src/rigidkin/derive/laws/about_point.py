@@ -27,6 +27,7 @@ from sympy.physics.vector import Vector, dynamicsymbols
 from ...base.errors import ModelError
 from ...base.printing import text
 from ...base.trace import LazyEquations
+from ...base.vectorops import cross, dot_vectors, dt
 from ..mode import ModeSetup
 from .newton_euler import BalanceEquation, body_balances
 
@@ -106,8 +107,9 @@ def _moment_about(setup: ModeSetup, bodies, rP: Vector) -> tuple[Vector, list]:
             continue
         loc = app.location if app.location is not None else kin.position(app.point)
         arm = setup.vector(loc - rP)
-        M += arm.cross(app.vector)
-        if app.reaction is not None and kin.is_zero_vector(arm.cross(app.vector)):
+        moment = cross(arm, app.vector)
+        M += moment
+        if app.reaction is not None and kin.is_zero_vector(moment):
             through.append(app.reaction)
     return M, through
 
@@ -115,7 +117,7 @@ def _moment_about(setup: ModeSetup, bodies, rP: Vector) -> tuple[Vector, list]:
 def _vanishes(setup: ModeSetup, P: Pole, d: Vector, maP: Vector, massless: bool) -> tuple[bool, str]:
     """Whether the inertial moment −(r̄ − r_P) × m a_P vanishes, and why."""
     kin = setup.kin
-    zero = kin.is_zero_vector(setup.vector(d.cross(maP)))
+    zero = kin.is_zero_vector(setup.vector(cross(d, maP)))
     if massless:
         return True, "the body is massless."
     if kin.is_zero_vector(setup.vector(P.acceleration)):
@@ -150,8 +152,8 @@ def equations(setup: ModeSetup, point: str, body=None) -> list[BalanceEquation]:
     out = []
     for bal in balances.values():
         for e, name in force_dirs:
-            lhs = setup.scalar(bal.force.dot(e))
-            rhs = setup.scalar(bal.mass_accel.dot(e))
+            lhs = setup.scalar(dot_vectors(bal.force, e))
+            rhs = setup.scalar(dot_vectors(bal.mass_accel, e))
             out.append(BalanceEquation(f"Euler's 1st law for {bal.body.name} along {name}", bal.body.name,
                                        METHOD, lhs, rhs))
     for group in _bodies(setup, body):
@@ -168,13 +170,13 @@ def equations(setup: ModeSetup, point: str, body=None) -> list[BalanceEquation]:
             w = kin.omega_of(b)
             Hbar = b.inertia.dot(w)
             maP = m * P.acceleration
-            inertial += -d.cross(maP)
+            inertial += -cross(d, maP)
             if P.material:
-                dHP += Hbar.dt(F.ref) + d.cross(m * (aG - P.acceleration))
+                dHP += dt(Hbar, F.ref) + cross(d, m * (aG - P.acceleration))
                 how = "dH_P/dt = dH̄/dt + (r̄ − r_P) × m (ā − a_P) for the material point P."
             else:
-                HP = Hbar + d.cross(m * (vG - P.velocity))
-                dHP += HP.dt(F.ref)
+                HP = Hbar + cross(d, m * (vG - P.velocity))
+                dHP += dt(HP, F.ref)
                 how = "H_P = H̄ + (r̄ − r_P) × m (v̄ − v_P), differentiated in the inertial frame."
                 tr.add("Inertia and momentum", f"Angular momentum of {b.name} about {point}",
                        LazyEquations(lambda HP=HP: [(sp.Symbol(f"H_{point}"), _v(setup, HP))]), how)
@@ -189,8 +191,8 @@ def equations(setup: ModeSetup, point: str, body=None) -> list[BalanceEquation]:
                "reactions whose line of action passes through P have no moment about it"
                + (f": {', '.join(map(str, sorted(set(through), key=str)))}." if through else "."))
         for e, name in moment_dirs:
-            lhs = _without_vanishing(setup, setup.scalar((M + inertial).dot(e)))
-            rhs = setup.scalar(dHP.dot(e)) if dHP != Vector(0) else sp.Integer(0)
+            lhs = _without_vanishing(setup, setup.scalar(dot_vectors(M + inertial, e)))
+            rhs = setup.scalar(dot_vectors(dHP, e)) if dHP != Vector(0) else sp.Integer(0)
             out.append(BalanceEquation(f"Euler's 2nd law for {label} about {point}, along {name}", label,
                                        METHOD, lhs, rhs))
     kept = [eq for eq in out if not (eq.expr == 0 or kin.is_zero(eq.expr))]
