@@ -105,7 +105,8 @@ def solution_from_rows(setup: ModeSetup, equations, method: str, trace: Trace, r
                       + (f" while {ref.describe()}" if ref.conditions else "") + ".")
         trace.add("Solving", "Reactions (from Euler's laws)", [],
                   f"{method} eliminates the reactions; they follow from Euler's laws with these accelerations.")
-        regimes.append(Regime(ref.conditions, ref.validity, ref.signs, eom, acc, ref.reactions, M, f,
+        regimes.append(Regime(ref.conditions, Deferred(lambda ref=ref: ref.validity), ref.signs, eom, acc,
+                              ref.reactions, M, f,
                               raw_mass_matrix=A, raw_forcing=-b))
     trace.add("Solving", "Equations of motion", LazyEquations(lambda: [(e, 0) for r in regimes for e in r.eom]),
               f"the equations of {method}, free of reactions: " + "; ".join(text(e) for e in accels) + ".")
