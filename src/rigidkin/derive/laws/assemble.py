@@ -22,6 +22,7 @@ from ..kinematics import linear_form
 from ..mode import ModeSetup
 from ..regime import Deferred
 from ..solution import LazyMap, Regime, Solution, repeatable
+from .compare import ops_above
 
 t = dynamicsymbols._t
 
@@ -29,7 +30,7 @@ t = dynamicsymbols._t
 def eom_row(expr: sp.Expr, accels) -> sp.Expr:
     """An equation of motion ``= 0`` tidied for reading: constant factors dropped, first q̈ positive."""
     e = algebra.strip_factors(sp.sympify(expr))
-    e = sp.collect(sp.expand(e), accels, func=sp.factor_terms) if sp.count_ops(e) < 200 else e
+    e = sp.collect(sp.expand(e), accels, func=sp.factor_terms) if not ops_above(e, 199) else e
     return algebra.leading_sign(e, accels) * e
 
 
@@ -46,7 +47,7 @@ def _readable_later(M_raw, f_raw, exprs, accels, kin):
             repeatable()
             box["M"] = M_raw.applyfunc(kin.simplify_expr)
             box["f"] = f_raw.applyfunc(kin.simplify_expr)
-            box["eom"] = tuple(eom_row(e, accels) if sp.count_ops(e) < 400 else e for e in exprs)
+            box["eom"] = tuple(eom_row(e, accels) if not ops_above(e, 399) else e for e in exprs)
         return box[name]
 
     return Deferred(lambda: get("M")), Deferred(lambda: get("f")), Deferred(lambda: get("eom"))
@@ -90,7 +91,7 @@ def solution_from_rows(setup: ModeSetup, equations, method: str, trace: Trace, r
         if len(accels) <= 2:
             M = A.applyfunc(kin.simplify_expr)
             f = (-b).applyfunc(kin.simplify_expr)
-            eom = tuple(eom_row(e, accels) if sp.count_ops(e) < 400 else e for e in exprs)
+            eom = tuple(eom_row(e, accels) if not ops_above(e, 399) else e for e in exprs)
         else:     # compared numerically from M and f as derived: the readable forms are made when read
             M, f, eom = _readable_later(A, -b, exprs, accels, kin)
         acc = _accelerations(M, f, red.independent, kin, method, setup.system.name)
