@@ -2,6 +2,7 @@
 
     python benchmarks/derivation.py [--repeats 3] [--max-n 10] [--solve-limit 150]
     python benchmarks/derivation.py --ratios [--repeats 3]      # the issue-16 table (a few minutes)
+    python benchmarks/derivation.py --ratios --chains 6 10 --chains-only --repeats 5     # the chains alone
 
 ``--ratios``: rigidkin / KanesMethod CPU time, same process, cold caches, for the chain at n = 6, 10
 and 20, every 3D example and the Whipple bicycle.  rigidkin: ``System.solve()`` and M, f as derived
@@ -90,7 +91,7 @@ def kane_parts(name: str) -> tuple[float, float]:
     return time.process_time() - t0, captured["eqs"]
 
 
-def ratio_table(repeats: int) -> str:
+def ratio_table(repeats: int, chains=(6, 10, 20), chains_only: bool = False) -> str:
     import statistics
     import time
 
@@ -121,23 +122,24 @@ def ratio_table(repeats: int) -> str:
     rigidkin_solve(chain.build(2))
     kane_chain(2)
     rows = []
-    for n in (6, 10, 20):
+    for n in chains:
         reps = repeats if n <= 10 else 1
         t_rk, t_km, _, ratio = paired(lambda n=n: rigidkin_solve(chain.build(n)), lambda n=n: kane_chain(n), reps)
         rows.append([f"chain n = {n}", t_rk, t_km, None, ratio])
         print(f"  chain {n} done", flush=True)
-    for name in EXAMPLES_3D:
+    for name in () if chains_only else EXAMPLES_3D:
         t_rk, t_km, t_eq, ratio = paired(lambda name=name: rigidkin_solve(examples.build(name)),
                                          lambda name=name: kane_parts(name), repeats,
                                          parts=True)
         rows.append([name, t_rk, t_km, t_eq, ratio])
         print(f"  {name} done", flush=True)
-    import bicycle as bike
+    if not chains_only:
+        import bicycle as bike
 
-    from rigidkin.examples import bicycle
+        from rigidkin.examples import bicycle
 
-    t_rk, t_km, _, ratio = paired(bicycle.projected, bike.sympy_bicycle, repeats)
-    rows.append(["Whipple bicycle", t_rk, t_km, None, ratio])
+        t_rk, t_km, _, ratio = paired(bicycle.projected, bike.sympy_bicycle, repeats)
+        rows.append(["Whipple bicycle", t_rk, t_km, None, ratio])
     return table("rigidkin / KanesMethod, derivation (CPU s, same process, cold caches)",
                  ["model", "rigidkin", "KanesMethod", "Kane eqs", "ratio"], rows,
                  "rigidkin: System.solve() with M and f as derived (reactions, q̈ and readable forms on demand); "
@@ -237,10 +239,12 @@ def main(argv=None) -> None:
     ap.add_argument("--limit", type=float, default=120.0, help="seconds for one example")
     ap.add_argument("--skip-examples", action="store_true")
     ap.add_argument("--ratios", action="store_true", help="only the issue-16 ratio table")
+    ap.add_argument("--chains", nargs="*", type=int, default=[6, 10, 20], help="chain lengths of the ratio table")
+    ap.add_argument("--chains-only", action="store_true", help="the ratio table for the chains alone")
     a = ap.parse_args(argv)
     print(f"# Derivation speed ({machine()})", flush=True)
     if a.ratios:
-        print(ratio_table(a.repeats), flush=True)
+        print(ratio_table(a.repeats, a.chains, a.chains_only), flush=True)
         return
     if not a.skip_examples:
         print(examples_table(a.repeats, a.limit), flush=True)

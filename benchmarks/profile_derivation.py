@@ -1,6 +1,10 @@
 """Where derivation time goes: cProfile of ``solve()`` for a chain of rods and for chosen examples.
 
     python benchmarks/profile_derivation.py [--chain 4] [--examples torque-free gyroscope]
+    python benchmarks/profile_derivation.py --check --chain 0 --examples rolling-disk --models four_bar
+
+``--check`` profiles ``solve()`` and ``check()`` (the cross-check by every law) instead; ``--models`` adds
+systems of benchmarks/models.py (four_bar, cart_pendulum ...).  Times are CPU seconds of the process.
 
 For each model: the rigidkin functions with the largest cumulative time, and the functions (sympy
 included) with the largest own time.  The findings and proposals are in benchmarks/README.md.
@@ -12,17 +16,20 @@ import argparse
 import cProfile
 import io
 import pstats
+import time
 
 from common import machine
 
 
-def profile(label: str, build, top: int = 14) -> str:
+def profile(label: str, build, top: int = 14, check: bool = False) -> str:
     system = build()
-    pr = cProfile.Profile()
+    pr = cProfile.Profile(time.process_time)
     pr.enable()
     sol = system.solve()
     for r in sol.regimes:           # M and f as derived; readable forms, q̈ and reactions are made when read
         _ = (r.raw_mass_matrix, r.raw_forcing) if hasattr(r, "raw_mass_matrix") else (r.mass_matrix, r.forcing)
+    if check:
+        str(sol.check())
     pr.disable()
     st = pstats.Stats(pr)
     total = st.total_tt
@@ -50,12 +57,19 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--chain", type=int, default=4)
     ap.add_argument("--examples", nargs="*", default=["torque-free", "boulder-push"])
+    ap.add_argument("--models", nargs="*", default=[], help="systems of benchmarks/models.py")
+    ap.add_argument("--check", action="store_true", help="profile solve() and check()")
     a = ap.parse_args(argv)
-    print(f"# Derivation profile ({machine()})", flush=True)
-    print(profile(f"chain of {a.chain} rods", lambda: chain.build(a.chain)), flush=True)
-    for name in a.examples:
+    import models
+
+    print(f"# {'Check' if a.check else 'Derivation'} profile ({machine()})", flush=True)
+    if a.chain:
+        print(profile(f"chain of {a.chain} rods", lambda: chain.build(a.chain), check=a.check), flush=True)
+    builds = [(n, lambda n=n: examples.build(n)) for n in a.examples]
+    builds += [(n, getattr(models, n)) for n in a.models]
+    for name, build in builds:
         try:
-            print(profile(name, lambda name=name: examples.build(name)), flush=True)
+            print(profile(name, build, check=a.check), flush=True)
         except Exception as exc:
             print(f"\n## {name}: {type(exc).__name__}: {exc}")
 

@@ -18,6 +18,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.plaintext import to_ascii
 from ..base.printing import latex
 from ..base.textsafe import markdown_text
+from ..derive import named as named_form
 from ..derive.closed_forms import structured
 from ..io.results import answer_data
 from ..model.speeds import euler_norms
@@ -68,7 +69,10 @@ def _regime(sol, r, shown, labels, eom) -> list:
         entries += [("math", f"{latex(e)} = 0") for e in r.eom]
         out.append(("Equations of motion", entries))
         if structured(r):
-            acc = [("text", f"{r.form.reason}; the reactions are in terms of q̈")]
+            acc = [("text", f"{r.form.reason}; the reactions are in terms of q̈"),
+                   ("text", named_form.heading(sol.coordinates))]
+            form = named_form.of_regime(r, sol.system)
+            acc += [("math", f"{latex(k)} = {latex(v)}") for k, v in named_form.rows(form)]
         else:
             acc = [("math", f"{latex(q.diff(t, 2))} = {latex(a)}") for q, a in r.accelerations.items()]
         out.append(("Accelerations", acc))

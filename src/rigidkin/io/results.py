@@ -20,6 +20,7 @@ import sympy as sp
 from sympy.physics.vector import dynamicsymbols
 
 from ..base.units import from_si, si_unit
+from ..derive import named
 from ..derive.closed_forms import structured
 
 t = dynamicsymbols._t
@@ -33,7 +34,7 @@ def _condition(c) -> dict:
     return {"expression": _s(c.expr), "relation": c.relation, "label": c.label}
 
 
-def regime_data(regime) -> dict:
+def regime_data(regime, system=None) -> dict:
     """One regime: its conditions, validity, equations of motion, mass matrix and forcing (M q̈ = f),
     accelerations and reactions.
 
@@ -54,7 +55,18 @@ def regime_data(regime) -> dict:
         "reactions": {k: _s(v) for k, v in regime.reactions.items()},
         # statically indeterminate reactions (derive/indeterminate.py): named, with the combinations determined
         "indeterminate": regime.indeterminate.data() if getattr(regime, "indeterminate", None) else None,
+        "named": _named(regime, system) if large else None,
     }
+
+
+def _named(regime, system) -> dict:
+    """M and f of a structured regime with named common sub-expressions (derive/named.py)."""
+    form = named.of_regime(regime, system)
+    M, f = form.mass_matrix, form.forcing
+    return {"note": named.NOTE,
+            "subexpressions": [{"name": str(s), "expression": _s(e)} for s, e in form.names],
+            "mass_matrix": [[_s(x) for x in M.row(i)] for i in range(M.rows)],
+            "forcing": [_s(x) for x in f]}
 
 
 def answer_value(answer) -> str:
@@ -137,7 +149,7 @@ def answer_data(a, values: dict) -> dict:
 def solution_data(sol, spec=None, answers: dict | None = None, notes: list[str] | None = None) -> dict[str, Any]:
     """The JSON object ``rigidkin solve --format json`` prints."""
     s = sol.system
-    regimes = [{"index": i, **regime_data(r)} for i, r in enumerate(sol.regimes)]
+    regimes = [{"index": i, **regime_data(r, sol.system)} for i, r in enumerate(sol.regimes)]
     first = regimes[0]
     data: dict[str, Any] = {
         "name": s.name,

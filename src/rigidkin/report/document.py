@@ -17,6 +17,8 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.printing import text as plain_text
 from ..base.trace import SECTIONS
 from ..base.units import ONE, from_si, shown_unit, si_unit
+from ..derive import named
+from ..derive.closed_forms import structured
 from ..model.speeds import euler_norms
 from .blocks import Document, Equations, Figure, Math, Paragraph, Section, Step, Table
 
@@ -97,8 +99,12 @@ def answers_blocks(solution) -> list:
                              + "".join(f"; the Euler parameters of {frame} normalised, {plain_text(n)} = 1"
                                        for frame, n in norms) + "):"))
         out.append(Equations(tuple(Math((e, sp.Integer(0))) for e in r.eom)))
-        out.append(Paragraph("In normal form:"))
-        out.append(Equations(tuple(Math((q.diff(t, 2), a)) for q, a in r.accelerations.items())))
+        if structured(r):
+            out.append(Paragraph(f"Accelerations: {r.form.reason}. " + named.heading(solution.coordinates)))
+            out.append(Equations(tuple(Math((k, v)) for k, v in named.rows(named.of_regime(r, solution.system)))))
+        else:
+            out.append(Paragraph("In normal form:"))
+            out.append(Equations(tuple(Math((q.diff(t, 2), a)) for q, a in r.accelerations.items())))
         if r.reactions:
             out.append(Paragraph("Reactions as functions of the state:"))
             out.append(Equations(tuple(Math((sp.Symbol(k), v)) for k, v in r.reactions.items())))

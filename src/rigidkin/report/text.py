@@ -11,6 +11,7 @@ from sympy.physics.vector import dynamicsymbols
 from ..base.printing import text
 from ..base.textsafe import terminal_safe
 from ..base.units import shown_value
+from ..derive import named as named_form
 from ..derive.closed_forms import structured
 from ..derive.derivation import derivation_of
 from ..model.speeds import euler_norms
@@ -117,6 +118,7 @@ def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
         if structured(r):
             out.append(f"{_INDENT}{r.form.reason}: M q̈ = f are the equations above; the reactions below are in "
                        "terms of q̈")
+            out += _named_lines(sol, r)
         else:
             for q, a in r.accelerations.items():
                 out.append(f"{_INDENT}{text(q.diff(t, 2))} = {text(a)}")
@@ -139,6 +141,13 @@ def _regime(sol, r, reactions, labels, eom=True) -> list[str]:
                 out.append(f"{_INDENT}{named[c.expr]} {rel} 0   ({c.label})")
             else:
                 out.append(f"{_INDENT}{c}")
+    return out
+
+
+def _named_lines(sol, r) -> list[str]:
+    """M and f of a structured regime with named common sub-expressions (derive/named.py)."""
+    out = [f"{_INDENT}{named_form.heading(sol.coordinates)}"]
+    out += [f"{_INDENT * 2}{text(k)} = {text(v)}" for k, v in named_form.rows(named_form.of_regime(r, sol.system))]
     return out
 
 

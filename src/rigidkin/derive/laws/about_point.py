@@ -26,6 +26,8 @@ from sympy.physics.vector import Vector, dynamicsymbols
 
 from ...base.errors import ModelError
 from ...base.printing import text
+from ...base.trace import LazyEquations
+from ...base.vectorops import cross, dot_vectors, dt
 from ..mode import ModeSetup
 from .newton_euler import BalanceEquation, body_balances
 
@@ -105,8 +107,9 @@ def _moment_about(setup: ModeSetup, bodies, rP: Vector) -> tuple[Vector, list]:
             continue
         loc = app.location if app.location is not None else kin.position(app.point)
         arm = setup.vector(loc - rP)
-        M += arm.cross(app.vector)
-        if app.reaction is not None and kin.is_zero_vector(arm.cross(app.vector)):
+        moment = cross(arm, app.vector)
+        M += moment
+        if app.reaction is not None and kin.is_zero_vector(moment):
             through.append(app.reaction)
     return M, through
 
@@ -114,7 +117,7 @@ def _moment_about(setup: ModeSetup, bodies, rP: Vector) -> tuple[Vector, list]:
 def _vanishes(setup: ModeSetup, P: Pole, d: Vector, maP: Vector, massless: bool) -> tuple[bool, str]:
     """Whether the inertial moment −(r̄ − r_P) × m a_P vanishes, and why."""
     kin = setup.kin
-    zero = kin.is_zero_vector(setup.vector(d.cross(maP)))
+    zero = kin.is_zero_vector(setup.vector(cross(d, maP)))
     if massless:
         return True, "the body is massless."
     if kin.is_zero_vector(setup.vector(P.acceleration)):
@@ -139,8 +142,9 @@ def equations(setup: ModeSetup, point: str, body=None) -> list[BalanceEquation]:
     force_dirs = [(F.x, F.basis[0]), (F.y, F.basis[1])] + ([] if planar else [(F.z, F.basis[2])])
     moment_dirs = [(F.z, F.basis[2])] if planar else [(F.x, F.basis[0]), (F.y, F.basis[1]), (F.z, F.basis[2])]
     tr.add("Kinematics", f"The point P = {point}",
-           [(sp.Symbol("r_P"), _v(setup, P.position)), (sp.Symbol("v_P"), _v(setup, P.velocity)),
-            (sp.Symbol("a_P"), _v(setup, P.acceleration))],
+           LazyEquations(lambda: [(sp.Symbol("r_P"), _v(setup, P.position)),
+                                  (sp.Symbol("v_P"), _v(setup, P.velocity)),
+                                  (sp.Symbol("a_P"), _v(setup, P.acceleration))]),
            f"P is {P.description}." + (" At a contact the velocity and acceleration are those of the material "
                                        "point of the body there (not of the geometric contact point)."
                                        if P.material else ""))
@@ -148,8 +152,8 @@ def equations(setup: ModeSetup, point: str, body=None) -> list[BalanceEquation]:
     out = []
     for bal in balances.values():
         for e, name in force_dirs:
-            lhs = kin.simplify_expr(setup.scalar(bal.force.dot(e)))
-            rhs = kin.simplify_expr(setup.scalar(bal.mass_accel.dot(e)))
+            lhs = setup.scalar(dot_vectors(bal.force, e))
+            rhs = setup.scalar(dot_vectors(bal.mass_accel, e))
             out.append(BalanceEquation(f"Euler's 1st law for {bal.body.name} along {name}", bal.body.name,
                                        METHOD, lhs, rhs))
     for group in _bodies(setup, body):
@@ -166,40 +170,56 @@ def equations(setup: ModeSetup, point: str, body=None) -> list[BalanceEquation]:
             w = kin.omega_of(b)
             Hbar = b.inertia.dot(w)
             maP = m * P.acceleration
-            inertial += -d.cross(maP)
+            inertial += -cross(d, maP)
             if P.material:
-                dHP += Hbar.dt(F.ref) + d.cross(m * (aG - P.acceleration))
+                dHP += dt(Hbar, F.ref) + cross(d, m * (aG - P.acceleration))
                 how = "dH_P/dt = dH̄/dt + (r̄ − r_P) × m (ā − a_P) for the material point P."
             else:
-                HP = Hbar + d.cross(m * (vG - P.velocity))
-                dHP += HP.dt(F.ref)
+                HP = Hbar + cross(d, m * (vG - P.velocity))
+                dHP += dt(HP, F.ref)
                 how = "H_P = H̄ + (r̄ − r_P) × m (v̄ − v_P), differentiated in the inertial frame."
                 tr.add("Inertia and momentum", f"Angular momentum of {b.name} about {point}",
-                       [(sp.Symbol(f"H_{point}"), _v(setup, HP))], how)
+                       LazyEquations(lambda HP=HP: [(sp.Symbol(f"H_{point}"), _v(setup, HP))]), how)
             gone, why = _vanishes(setup, P, d, maP, False)
             tr.add("Balance laws", f"Inertial moment of {b.name} about {point}",
-                   [(sp.Symbol("-(r̄ − r_P) × m a_P"), _v(setup, -d.cross(maP)))],
+                   LazyEquations(lambda d=d, maP=maP: [(sp.Symbol("-(r̄ − r_P) × m a_P"), _v(setup, -d.cross(maP)))]),
                    ("It vanishes: " if gone else "") + why)
         if massless:
             tr.add("Balance laws", f"{label} is massless", [], "its moments about P balance: M_P = 0.")
         tr.add("Free-body diagram", f"Moment about {point} of the loads on {label}",
-               [(sp.Symbol(f"M_{point}"), _v(setup, M))],
+               LazyEquations(lambda M=M: [(sp.Symbol(f"M_{point}"), _v(setup, M))]),
                "reactions whose line of action passes through P have no moment about it"
                + (f": {', '.join(map(str, sorted(set(through), key=str)))}." if through else "."))
         for e, name in moment_dirs:
-            lhs = kin.simplify_expr(setup.scalar((M + inertial).dot(e)))
-            rhs = kin.simplify_expr(setup.scalar(dHP.dot(e))) if dHP != Vector(0) else sp.Integer(0)
+            lhs = _without_vanishing(setup, setup.scalar(dot_vectors(M + inertial, e)))
+            rhs = setup.scalar(dot_vectors(dHP, e)) if dHP != Vector(0) else sp.Integer(0)
             out.append(BalanceEquation(f"Euler's 2nd law for {label} about {point}, along {name}", label,
                                        METHOD, lhs, rhs))
     kept = [eq for eq in out if not (eq.expr == 0 or kin.is_zero(eq.expr))]
     reactions = set(setup.reactions)
     for eq in kept:
         free = not any(eq.expr.has(r) for r in reactions)
-        tr.add("Balance laws", eq.label, [(eq.lhs, eq.rhs)],
+        tr.add("Balance laws", eq.label,
+               LazyEquations(lambda eq=eq: [(kin.simplify_expr(eq.lhs), kin.simplify_expr(eq.rhs))]),
                ("F = m ā" if "1st" in eq.label else "M_P − (r̄ − r_P) × m a_P = dH_P/dt")
                + ("; no reaction appears: this equation alone is an equation of motion."
                   if free and "2nd" in eq.label else ""))
     return kept
+
+
+def _without_vanishing(setup: ModeSetup, moment: sp.Expr) -> sp.Expr:
+    """A moment component as derived (not simplified: the equations are solved and compared as derived,
+    and simplified for reading only in the trace), less the reactions whose coefficient simplifies to 0
+    (a reaction through P: its arm × its direction cancels only after simplification)."""
+    kin = setup.kin
+    gone = {}
+    for r in setup.reactions:
+        if not moment.has(r):
+            continue
+        c = moment.diff(r)
+        if c == 0 or (kin.is_zero(c) and kin.simplify_expr(c) == 0):
+            gone[r] = sp.Integer(0)
+    return moment.xreplace(gone) if gone else moment
 
 
 def reaction_free(setup: ModeSetup, eqs) -> list[BalanceEquation]:

@@ -15,8 +15,9 @@ from sympy.physics.mechanics import KanesMethod
 from sympy.physics.vector import dynamicsymbols
 
 from ...base.printing import text
+from ...base.trace import LazyEquations
 from ..mode import ModeSetup
-from .lagrange import split
+from .lagrange import _tidy, split
 from .mechanics_model import build
 from .methods import NotApplicable
 from .newton_euler import BalanceEquation
@@ -91,13 +92,14 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
         solved_r = sol[0]
     n = len(qs)
     out = []
+    tidy = _tidy(setup)
     if not u_dep:
         # no dependent speed: Kane's equations themselves, M(q) q̈ = f(q, q̇), one per speed
         udot = {u.diff(t): q.diff(t, 2) for q, u in zip(qs, us)}
         accels = [q.diff(t, 2) for q in qs]
         for q, e in zip(qs, fr + frstar):
             e = sp.sympify(e).xreplace(solved_r)
-            e = kin.simplify_expr(setup.scalar(e.xreplace(udot).xreplace(back)))
+            e = tidy(setup.scalar(e.xreplace(udot).xreplace(back)))
             lhs, rhs = split(-e, accels)
             out.append(BalanceEquation(f"Kane's equation for the speed of {text(q)}", "system", METHOD, lhs, rhs))
         return out
@@ -107,9 +109,10 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
         if q not in ind:
             continue
         a = rhs[n + order.index(u)].xreplace(back)
-        a = kin.simplify_expr(setup.scalar(a))
+        a = tidy(setup.scalar(a))
         out.append(BalanceEquation(f"Kane's equations solved for {text(q.diff(t, 2))}", "system", METHOD,
                                    a, q.diff(t, 2)))
-        tr.add("Balance laws", f"Acceleration {text(q.diff(t, 2))} from Kane's equations", [(q.diff(t, 2), a)],
+        tr.add("Balance laws", f"Acceleration {text(q.diff(t, 2))} from Kane's equations",
+               LazyEquations(lambda q=q, a=a: [(q.diff(t, 2), kin.simplify_expr(a))]),
                "mass matrix and forcing of KanesMethod solved for the independent speed rates.")
     return out

@@ -15,6 +15,7 @@ from sympy.physics.mechanics import LagrangesMethod, Lagrangian
 from sympy.physics.vector import dynamicsymbols
 
 from ...base.printing import text
+from ...base.trace import LazyEquations
 from ..mode import ModeSetup
 from .mechanics_model import build
 from .methods import NotApplicable
@@ -35,7 +36,7 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     model = build(setup, "potential", METHOD)
     qs = list(setup.system.coordinates)
     L = Lagrangian(model.frame, *model.bodies) - model.potential if model.bodies else -model.potential
-    tr.add("Balance laws", "Lagrangian", [(sp.Symbol("L"), kin.simplify_expr(L))],
+    tr.add("Balance laws", "Lagrangian", LazyEquations(lambda: [(sp.Symbol("L"), kin.simplify_expr(L))]),
            "L = T − U over all the coordinates " + ", ".join(text(q) for q in qs) + " (none eliminated).")
     if model.holonomic or model.nonholonomic:
         tr.add("Balance laws", "Constraints for Lagrange's equations",
@@ -48,23 +49,34 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
            "d/dt(∂L/∂q̇) − ∂L/∂q = Q_q + Σ λ a_q for every coordinate (sympy.physics.mechanics.LagrangesMethod).")
     n = len(qs)
     out = []
+    tidy = _tidy(setup)
     if not (model.holonomic or model.nonholonomic):
         # no constraint relates the rates: the equations themselves, M q̈ = f, one per coordinate
         for q, e in zip(qs, eom):
-            e = kin.simplify_expr(setup.scalar(e))
+            e = tidy(setup.scalar(e))
             lhs, rhs = split(e, [c.diff(t, 2) for c in qs])
             out.append(BalanceEquation(f"Lagrange's equation for {text(q)}", "system", METHOD, lhs, rhs))
         return out
     rhs = LM.rhs()
     for q in setup.reduction.independent:
         a = rhs[n + qs.index(q)]
-        a = kin.simplify_expr(setup.scalar(a))
+        a = tidy(setup.scalar(a))
         out.append(BalanceEquation(f"Lagrange's equations solved for {text(q.diff(t, 2))}", "system", METHOD,
                                    a, q.diff(t, 2)))
-        tr.add("Balance laws", f"Acceleration {text(q.diff(t, 2))} from Lagrange's equations", [(q.diff(t, 2), a)],
+        tr.add("Balance laws", f"Acceleration {text(q.diff(t, 2))} from Lagrange's equations",
+               LazyEquations(lambda q=q, a=a: [(q.diff(t, 2), kin.simplify_expr(a))]),
                "Lagrange's equations and the differentiated constraints solved for the accelerations and "
                "multipliers, at a state that satisfies the constraints.")
     return out
+
+
+def _tidy(setup: ModeSetup):
+    """Simplification of a law's equations as they are formed: for up to two degrees of freedom (their
+    accelerations are compared symbolically where small); above, the equations are compared numerically
+    from M and f as derived, and simplified for reading only when the trace is read."""
+    if len(setup.reduction.independent) <= 2:
+        return setup.kin.simplify_expr
+    return lambda e: e
 
 
 def split(e, accels) -> tuple:

@@ -10,6 +10,7 @@ cannot close is drawn again) and gives the dependent rates from the rate relatio
 from __future__ import annotations
 
 import random
+import weakref
 
 import mpmath
 import sympy as sp
@@ -34,6 +35,7 @@ class Manifold:
         gaps = [algebra.substitute(g, coord_map) if coord_map else g for g in gaps]
         dep = [q for q in red.dependent if q not in coord_map and any(g.has(q) for g in gaps)]
         self.active = bool(dep)
+        self._samples: dict = {}
         if not self.active:
             return
         gaps = [g for g in gaps if g.has(*dep)]
@@ -54,6 +56,17 @@ class Manifold:
             syms = sorted(p.free_symbols - {t}, key=str)
             name = algebra.plain_state(q.diff(t))[0]
             self.rates.append((name, syms, sp.lambdify(syms + [t], p, modules="mpmath")))
+
+    def sample(self, seed: int, i: int) -> tuple[float, dict | None]:
+        """(t, admissible state) number ``i`` of the stream ``seed``: drawn once, the same for every
+        comparison that asks (Newton's method at 30 digits is the cost of a draw)."""
+        key = (seed, i)
+        if key not in self._samples:
+            rng = random.Random(f"manifold-{seed}-{i}")
+            tv = rng.uniform(0.1, 1.0)
+            self._samples[key] = (tv, self.draw(rng, tv))
+        tv, drawn = self._samples[key]
+        return tv, None if drawn is None else dict(drawn)
 
     def draw(self, rng: random.Random, t_value: float, known: dict | None = None) -> dict | None:
         """{plain symbol: value} of an admissible state (the gaps' symbols, the dependent coordinates and
@@ -106,12 +119,25 @@ class Manifold:
 
 
 def manifold_of(solution) -> Manifold | None:
-    """The solution's admissible-state sampler, or None when no dependent coordinate is left implicit."""
+    """The solution's admissible-state sampler, or None when no dependent coordinate is left implicit
+    (made once per solution: its draws are kept for every comparison)."""
+    kept = _KEPT.get(id(solution))
+    if kept is not None and kept[0]() is solution:
+        return kept[1]
     try:
         m = Manifold(solution)
     except (AttributeError, TypeError, ValueError):
-        return None
-    return m if m.active else None
+        m = None
+    m = m if m is not None and m.active else None
+    for k in [k for k, (ref, _) in _KEPT.items() if ref() is None]:
+        del _KEPT[k]
+    _KEPT[id(solution)] = (weakref.ref(solution), m)
+    return m
+
+
+#: id(solution) → (weak reference to it, its Manifold): kept beside the solution, not in it (numeric
+#: functions are not pickled with a derivation).
+_KEPT: dict = {}
 
 
 def _initial(system, q) -> float:
