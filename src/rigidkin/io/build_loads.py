@@ -7,6 +7,7 @@ from ..base.errors import InputError
 from ..model.loads import V as DAMPER_SPEED
 from ..model.ropes import Wrap
 from . import schema as S
+from .build_restitution import restitution_value
 from .expressions import (
     check_name,
 )
@@ -107,9 +108,8 @@ class ConstraintsAndLoads:
                       self.body(c.track_body, path + ("track_body",), True),
                       self.friction(c.friction, path + ("friction",)), c.normal_name, c.couple_name, c.description)
 
-        if getattr(c, "restitution", None) is not None:            # Newton's law for the contact's impacts
-            self.call(path + ("restitution",), self.s.restitution, name,
-                      self.scalar(c.restitution, path + ("restitution",)))
+        if getattr(c, "restitution", None) is not None:    # Newton's law: a contact's impacts, a rope's jerk
+            self.call(path + ("restitution",), self.s.restitution, name, restitution_value(self, name, c, path))
 
     def _needs(self, method: str, path) -> None:
         if not hasattr(self.s, method):

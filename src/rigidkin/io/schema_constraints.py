@@ -115,6 +115,7 @@ class CableSpec(Strict):
     length: Expr
     bodies: list[str] | None = None
     tension_name: Name | None = None
+    restitution: Expr | None = None       # e of its jerk as it re-tightens after going slack (0 ≤ e ≤ 1; default 0)
     description: str = ""
 
 
@@ -134,6 +135,7 @@ class RopeSpec(Strict):
     type: Literal["rope"]
     path: list[Name | WrapSpec] = Field(min_length=2)
     tensions: list[Name] | None = None
+    restitution: Expr | None = None       # e of its jerk as it re-tightens after going slack (0 ≤ e ≤ 1; default 0)
     description: str = ""
 
 

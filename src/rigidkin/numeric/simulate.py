@@ -34,6 +34,7 @@ from .contacts.vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mo
 from .inputs import ACTIVE, binding, placeholders
 from .large.route import numeric_route, simulate_tree
 from .large.tree import NotATree
+from .restitution import restitution_map
 from .result import Event, Segment, SimulationResult, build_result
 from .rhs import RHS, SimulationError, compile_functions
 from .state import StateLayout, assembled_changes, initial_values, parameter_vector
@@ -74,25 +75,6 @@ def _span(t_span) -> tuple[float, float]:
         raise InputError(f"the time span ({t0}, {t1}) is empty or not finite.", where="simulate",
                          hint="Give an end time after the start, e.g. --t-end 3.")
     return t0, t1
-
-
-def _restitution(system, restitution) -> dict:
-    hyb_contacts = [n for n, c in system.constraints.items() if getattr(c, "kind", "") == "contact"]
-    restitution = {} if restitution is None else restitution      # None: each contact's declared e (or 0)
-    if isinstance(restitution, Mapping):
-        bad = [n for n in restitution if n not in hyb_contacts]
-        if bad:
-            raise InputError(f"{', '.join(bad)} is not a contact of {system.name}.", where="restitution",
-                             hint=f"Contacts: {', '.join(hyb_contacts) or 'none'}.")
-        out = {n: getattr(system, "restitutions", {}).get(n, 0.0) for n in hyb_contacts}
-        out.update({n: float(v) for n, v in restitution.items()})
-    else:
-        out = {n: float(restitution) for n in hyb_contacts}
-    for n, e in out.items():
-        if not 0.0 <= e <= 1.0:
-            raise InputError(f"the coefficient of restitution of {n} is {e}; it must lie in [0, 1].",
-                             where="restitution")
-    return out
 
 
 def initial_conditions(system, initial: Mapping | None = None, params=None, mode: Mapping | None = None,
@@ -259,8 +241,8 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
     values; dependent coordinates from the constraints); ``params`` overrides parameter values
     (numbers are SI, strings carry units: ``{"beta": "30 deg"}``); ``phases`` splits the motion into
     stretches with their own parameters; ``mode`` fixes the starting state of contacts;
-    ``restitution`` is e for every contact or a dict per contact (0: the contact closes on impact;
-    a bounce slower than ``rest_speed`` closes it too; None: each contact's ``System.restitution``, or 0).
+    ``restitution`` is e for every contact or a dict by contact, rope or cable (0: a contact closes on impact, a
+    rope jerks taut; a bounce slower than ``rest_speed`` closes it too; None: each one's ``System.restitution``, or 0).
     ``max_step`` defaults to 1/100 of the span.
     Returns a :class:`SimulationResult` with time histories, events, energy and constraint monitors;
     a run that stops early (at t = 0 too: a contact paradox at the start) returns its result with
@@ -285,7 +267,7 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
     phases = list(phases or [Phase()])
     base = dict(params or {})
     pvecs = [parameter_vector(system, lay, {**base, **dict(ph.params)}) for ph in phases]
-    e_of = _restitution(system, restitution)
+    e_of = restitution_map(system, restitution)
     for pv in pvecs:                     # µs ≥ µk with the values of this run
         for name, c in hyb.contacts.items():
             if isinstance(c.friction, Coulomb) and c.friction.two:
