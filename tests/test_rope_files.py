@@ -204,3 +204,15 @@ def test_simulate_takes_a_rope_name(hand):
         simulate(s, 1.0, restitution={"string": 1.3})
     with pytest.raises(RigidkinError, match="must be a number, not 'x'"):
         simulate(s, 1.0, restitution={"string": "x"})
+
+
+def test_command_line_restitution_names_a_rope(hand, tmp_path, capsys):
+    """rigidkin simulate FILE --restitution string=0.5 wins over the file's 0.3: impulse m (1 + 0.5) v_r."""
+    from rigidkin.cli import main
+
+    _, vr = hand
+    path = tmp_path / "bob.toml"
+    path.write_text(BOB, encoding="utf-8")
+    assert main(["simulate", str(path), "--t-end", "1.23", "--restitution", "string=0.5"]) == 0
+    out = capsys.readouterr().out
+    assert f"impulse T = {1.5 * MB * vr:.6g}" in out and "rebounds slack (e = 0.5)" in out, out

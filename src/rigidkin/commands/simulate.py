@@ -42,8 +42,8 @@ def register(sub) -> None:
     p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
                    help="starting state of a contact: open, slip or stick")
     p.add_argument("--restitution", nargs="+", action="extend", default=[], metavar="E|CONTACT=E",
-                   help="coefficient of restitution of impacts, for all contacts or per contact (default: the "
-                        "contact's restitution in the problem file, else 0)")
+                   help="coefficient of restitution of impacts, for all contacts or per contact (or per rope or "
+                        "cable: its jerk; default: the restitution in the problem file, else 0)")
     p.add_argument("--input", nargs="+", action="extend", default=[], metavar="NAME=EXPR",
                    help="an input u(t) as an expression of t and the parameters, e.g. --input \"F=3*sin(2*t)\" "
                         "(default: the input's history in the problem file)")
