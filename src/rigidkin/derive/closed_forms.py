@@ -7,13 +7,13 @@ d of its entries non-zero has about n!·dⁿ products of n entries, so
 
     predicted operations ≈ 2 · n! · dⁿ · (n · m̄ + f̄),
 
-m̄ and f̄ the mean operation counts (``sympy.count_ops``) of the non-zero entries of M and of f.  Above
-``CLOSED_FORM_OPS`` the solution is given as structure: the equations of motion M q̈ = f (their entries
-as derived), and the reactions in terms of q̈, which M q̈ = f gives as exact numbers at any state
-(``Solution.reactions_at``; ``accelerations_at``).  The choice depends on the expressions alone — the
-same on every run, on any machine, however loaded.  ``regime.accelerations`` still gives the closed
-form when a program asks for it; only what is printed and what the reactions are written with follow
-the choice.
+m̄ and f̄ the mean operation counts (``sympy.count_ops``, found by ``base.opcount``) of the non-zero
+entries of M and of f. Above ``CLOSED_FORM_OPS`` the solution is given as structure: the equations of
+motion M q̈ = f (their entries as derived), and the reactions in terms of q̈, which M q̈ = f gives as
+exact numbers at any state (``Solution.reactions_at``; ``accelerations_at``). The choice depends on the
+expressions alone — the same on every run, on any machine, however loaded. ``regime.accelerations``
+still gives the closed form when a program asks for it; only what is printed and what the reactions are
+written with follow the choice.
 """
 
 from __future__ import annotations
@@ -22,6 +22,8 @@ import math
 from dataclasses import dataclass
 
 import sympy as sp
+
+from ..base.opcount import count_ops
 
 #: Above this predicted operation count the accelerations are given as M q̈ = f rather than solved.
 #: (Every bundled example predicts at most ~650, a chain of three rods ~1900; a four-bar linkage ~3500,
@@ -54,8 +56,9 @@ def predicted_ops(M: sp.Matrix, f: sp.Matrix) -> int:
         return 2 * math.factorial(n) * (n + 1)
     entries = [e for e in M if e != 0]
     density = len(entries) / (n * n)
-    m = sum(sp.count_ops(e) for e in entries) / max(1, len(entries)) + 1
-    fm = sum(sp.count_ops(e) for e in f) / max(1, f.rows) + 1
+    memo: dict = {}             # the entries share subexpressions: each counted once (the counts are sympy's)
+    m = sum(count_ops(e, memo) for e in entries) / max(1, len(entries)) + 1
+    fm = sum(count_ops(e, memo) for e in f) / max(1, f.rows) + 1
     return int(round(2 * math.factorial(n) * density ** n * (n * m + fm)))
 
 
@@ -67,7 +70,8 @@ READABLE_MF_OPS = 1000
 
 def readable_size(M: sp.Matrix, f: sp.Matrix) -> bool:
     """Whether M and f as derived are small enough to be simplified for reading."""
-    return sum(sp.count_ops(e) for e in (*M, *f) if e != 0) <= READABLE_MF_OPS
+    memo: dict = {}
+    return sum(count_ops(e, memo) for e in (*M, *f) if e != 0) <= READABLE_MF_OPS
 
 
 def choose(M_raw: sp.Matrix, f_raw: sp.Matrix) -> FormChoice:

@@ -35,6 +35,12 @@ if TYPE_CHECKING:
 t = dynamicsymbols._t
 
 
+def _dyadic_component(u: Vector, D, w: Vector):
+    """u · D · w for a dyadic D: Σ c (u · a)(b · w) over its terms c a b (the value of ``u.dot(D).dot(w)``,
+    each unit vector resolved through the direction cosines once rather than through Vector arithmetic)."""
+    return sp.Add(*[c * vectorops.dot_vectors(u, a) * vectorops.dot_vectors(b, w) for c, a, b in D.args])
+
+
 class Kinematics:
     """Positions, velocities and accelerations of a system's points and frames in the inertial frame."""
 
@@ -55,14 +61,16 @@ class Kinematics:
         for fr in s.frames.values():
             if fr.parent is None:
                 continue
-            if fr.sequence is not None or fr.axis is None or not self.is_zero_vector(fr.axis.cross(fr.parent.z)):
+            if fr.sequence is not None or fr.axis is None or \
+                    not self.is_zero_vector(vectorops.cross(fr.axis, fr.parent.z)):
                 return False
         for p in s.points.values():
             if p.parent is not None and not algebra.is_zero(p.offset.dot(z)):
                 return False
         for b in s.bodies.values():
             I = b.inertia
-            if not (algebra.is_zero(z.dot(I).dot(self.F.x)) and algebra.is_zero(z.dot(I).dot(self.F.y))):
+            if not (algebra.is_zero(_dyadic_component(z, I, self.F.x)) and
+                    algebra.is_zero(_dyadic_component(z, I, self.F.y))):
                 return False
         for ld in s.loads.values():
             for attr in ("vector", "direction", "along", "normal", "axis"):

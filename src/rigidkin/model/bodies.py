@@ -29,8 +29,13 @@ class Body:
 
     @property
     def inertia(self) -> Dyadic:
-        """Inertia dyadic about the mass centre, in the body frame."""
-        return self.shape.central_inertia(self.frame)
+        """Inertia dyadic about the mass centre, in the body frame (built once for the body's shape and frame:
+        sympy's dyadic algebra is slow, and every law and check reads it)."""
+        shape, frame = self.shape, self.frame
+        made = self.__dict__.get("_inertia")
+        if made is None or made[0] is not shape or made[1] is not frame:
+            made = self.__dict__["_inertia"] = (shape, frame, shape.central_inertia(frame))
+        return made[2]
 
     @property
     def is_massless(self) -> bool:

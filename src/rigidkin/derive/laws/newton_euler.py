@@ -103,7 +103,7 @@ def equations(setup: ModeSetup) -> list[BalanceEquation]:
     out = []
     for bal in body_balances(setup):
         b = bal.body
-        _, _, apps = body_loads(setup, b)
+        apps = [app for app in setup.applications if app.body is b]    # body_loads' list, its sums not redone
         tr.add("Free-body diagram", f"Loads on {b.name}",
                LazyEquations(lambda apps=apps: [(sp.Symbol(a.label.replace(" ", "_")), _ind(setup, a.vector))
                                                 for a in apps]),
