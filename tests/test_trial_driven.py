@@ -9,7 +9,9 @@ import pytest
 import sympy as sp
 from scipy.integrate import solve_ivp
 
+from rigidkin.analysis.answers import answer
 from rigidkin.analysis.equilibrium import equilibria
+from rigidkin.analysis.questions import Question
 from rigidkin.analysis.state_space import state_space
 from rigidkin.base.errors import RigidkinError
 from rigidkin.io.problem import parse_problem
@@ -42,7 +44,7 @@ gravity = { type = "gravity", g = "g", direction = "-Ey" }
 
 
 def _hoop(omega_value=', value = 6'):
-    sys_ = parse_problem(HOOP.replace("OMEGA", 'Omega = { unit = "rad/s"%s }' % omega_value))[0]
+    sys_ = parse_problem(HOOP.replace("OMEGA", 'Omega = { unit = "rad/s"' + omega_value + ' }'))[0]
     return sys_, sys_.solve()
 
 
@@ -64,6 +66,9 @@ def test_hoop_equations_torque_and_relative_equilibria():
     # ω² = Ω² sin²θ* = Ω² − g²/(R²Ω²)
     w = float(e.natural_frequencies[0].subs(vals))
     assert w == pytest.approx(math.sqrt(36 - 9.81**2 / (0.25 * 36)), rel=1e-12)
+    # the printed answer gives the numbers too: cos θ* = g/(RΩ²), ω_n in rad/s
+    txt = answer(sys_, Question("equilibrium", "eq", {})).text
+    assert f"θ ≈ {star:.6g}" in txt and f"ω_n ≈ {w:.6g} rad/s" in txt
 
 
 def test_hoop_stability_without_a_value_for_the_spin_is_a_condition_not_a_guess():

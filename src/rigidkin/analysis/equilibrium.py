@@ -240,7 +240,7 @@ def _positive(expr, values, unset) -> bool:
         return _num(expr, values) > 0
     known = {k: v for k, v in values.items() if k not in unset}
     e = sp.sympify(expr).xreplace({k: sp.Float(v) for k, v in known.items()})
-    return not (e.is_nonpositive is True)
+    return e.is_nonpositive is not True
 
 
 def _conditional_stability(Mmat, Cmat, Kmat, unset) -> str:
