@@ -222,3 +222,12 @@ def test_coin_steady_circular_motion_against_eulers_equations():
     steady.linearise(sol, {lean: 0.3, lean.diff(t): 0, psi.diff(t): 5.0, spin.diff(t): s_star})
     with pytest.raises(RigidkinError, match="back-substitution"):
         steady.linearise(sol, {lean: 0.3, lean.diff(t): 0, psi.diff(t): 5.0, spin.diff(t): s_star + 5})
+
+
+def test_latex_text_keeps_every_power_and_index():
+    """Ω⁴ in an answer's text (the hoop's ω_n² = Ω² − g²/(R²Ω²)) must stay a fourth power in a LaTeX report."""
+    from rigidkin.report.notation import latex_text
+
+    out = latex_text("ω_n = sqrt(-g² + Ω⁴·R²)/(Ω·R); s⁻¹; x₁₂")
+    assert r"$\Omega$$^{4}$" in out and "g$^{2}$" in out and "s$^{-1}$" in out and "x$_{12}$" in out
+    assert "Omega$4" not in out
