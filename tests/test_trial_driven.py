@@ -231,3 +231,16 @@ def test_latex_text_keeps_every_power_and_index():
     out = latex_text("ω_n = sqrt(-g² + Ω⁴·R²)/(Ω·R); s⁻¹; x₁₂")
     assert r"$\Omega$$^{4}$" in out and "g$^{2}$" in out and "s$^{-1}$" in out and "x$_{12}$" in out
     assert "Omega$4" not in out
+
+
+def test_cart_pendulum_stability_without_a_value_for_the_cart_mass():
+    """M without a value: ω² = 0 (the cart rolls freely) and g(M + m)/(M l) > 0 hanging, so stable for every
+    positive M; upright −g(M + m)/(M l) < 0, unstable — decided from the parameters' signs, not a stand-in M."""
+    sys_ = parse_problem(CART.replace('M = { unit = "kg", value = 2.0 }', 'M = { unit = "kg" }'))[0]
+    sol = sys_.solve()
+    M, m, l, g = (sys_.parameters[k] for k in ("M", "m", "l", "g"))
+    th = sys_.coordinates["theta"] if isinstance(sys_.coordinates, dict) else sol.coordinates[1]
+    found = {sp.simplify(e.configuration[th]): e for e in equilibria(sol)}
+    assert found[0].stability.startswith("stable") and "1 neutral mode" in found[0].stability
+    assert found[sp.pi].stability == "unstable"
+    assert sp.simplify(found[0].natural_frequencies[0]**2 - g * (M + m) / (M * l)) == 0

@@ -172,7 +172,7 @@ def linearise(solution, at: dict) -> Equilibrium:
     values = numeric_values(solution)
     unset = _unset(solution, (Mmat, Cmat, Kmat))
     # natural frequencies (undamped) where exact
-    freqs, zetas, notes = [], [], []
+    freqs, zetas, notes, roots = [], [], [], None
     if n == 1:
         k, m, c = Kmat[0, 0], Mmat[0, 0], Cmat[0, 0]
         if _positive(k / m, values, unset):
@@ -192,7 +192,7 @@ def linearise(solution, at: dict) -> Equilibrium:
             if _positive(r, values, unset):
                 freqs.append(algebra.readable(sp.sqrt(r)))
     if unset:
-        stab, eig = _conditional_stability(Mmat, Cmat, Kmat, unset), ()
+        stab, eig = _conditional_stability(Mmat, Cmat, Kmat, unset, roots), ()
         return _finish(solution, regime, point, configuration, (Mmat, Cmat, Kmat), eom, freqs, zetas, eig, stab,
                        list(lin.notes) + notes)
     # stability from the first-order system with numbers
@@ -243,18 +243,28 @@ def _positive(expr, values, unset) -> bool:
     return e.is_nonpositive is not True
 
 
-def _conditional_stability(Mmat, Cmat, Kmat, unset) -> str:
-    """Stability where a parameter has no value: a condition for one undamped degree of freedom, else undecided."""
+def _conditional_stability(Mmat, Cmat, Kmat, unset, roots=None) -> str:
+    """Stability where a parameter has no value: decided from the signs of ω² that the parameters' signs fix
+    (undamped), a condition for one undamped degree of freedom, else undecided."""
     names = ", ".join(text(s) for s in unset)
     verb = "has" if len(unset) == 1 else "have"
-    if Mmat.shape == (1, 1) and Cmat[0, 0] == 0:
-        r = algebra.readable(Kmat[0, 0] / Mmat[0, 0])
-        if r.is_positive:
-            return "stable (undamped oscillation about it)"
-        if r.is_negative:
+    undamped = all(c == 0 for c in Cmat)
+    if undamped and Mmat.shape == (1, 1):
+        roots = [algebra.readable(Kmat[0, 0] / Mmat[0, 0])]
+    if undamped and roots is not None and len(roots) == Mmat.shape[0]:
+        signs = [sp.sympify(r) for r in roots]
+        if any(r.is_negative for r in signs):
             return "unstable"
-        return (f"stable (undamped oscillation about it) while {text(r)} > 0, unstable while {text(r)} < 0 "
-                f"({names} {verb} no value)")
+        if all(r.is_nonnegative for r in signs):
+            neutral = sum(1 for r in signs if r.is_zero)
+            if neutral == len(signs):
+                return "marginal (linearisation inconclusive)"
+            return "stable (undamped oscillation about it)" + (
+                f", with {neutral} neutral mode(s) (free rigid-body motion)" if neutral else "")
+        if len(signs) == 1:
+            r = signs[0]
+            return (f"stable (undamped oscillation about it) while {text(r)} > 0, unstable while {text(r)} < 0 "
+                    f"({names} {verb} no value)")
     return f"stability undecided: it depends on {names}, which {verb} no value (give {names} a value)"
 
 
