@@ -18,7 +18,7 @@ from ..base.errors import InputError, RegimeError, RigidkinError
 from ..base.printing import text
 from ..derive.laws import impulse as law
 from ..derive.solution import repeatable
-from .equilibrium import equilibria
+from .equilibrium import equilibria, known_values
 from .events import _num, condition_expression, event, extreme, threshold
 from .integrals import along_motion, energy_integral, first_integrals
 from .phases import Phase, run_phases
@@ -222,8 +222,21 @@ def _equilibrium(system, question, f, context):
         raise RigidkinError("at an equilibrium nothing slides, so a contact with sliding friction sticks there: "
                             "ask with its mode set to 'stick'.")
     eqs = equilibria(sol)
-    lines = [str(e) for e in eqs]
+    lines = [str(e) + _in_numbers(e, known_values(sol)) for e in eqs]
     return Answer(question, tuple(eqs), "; ".join(lines), details={"equilibria": eqs})
+
+
+def _in_numbers(e, values) -> str:
+    """An equilibrium's position and natural frequencies as numbers with the parameters' values (where every
+    parameter they hold has one): ` (θ ≈ 0.994407; ω_n ≈ 5.03062 rad/s)`."""
+    parts = []
+    for q, v in e.configuration.items():
+        if sp.sympify(v).free_symbols and not (sp.sympify(v).free_symbols - set(values)):
+            parts.append(f"{text(q)} ≈ {_num(v, values):.6g}")
+    for w in e.natural_frequencies:
+        if not (sp.sympify(w).free_symbols - set(values)):
+            parts.append(f"ω_n ≈ {_num(w, values):.6g} rad/s")
+    return f" ({'; '.join(parts)})" if parts else ""
 
 
 def _phases(system, question, f, context):

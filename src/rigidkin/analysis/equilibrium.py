@@ -5,7 +5,9 @@ rates set to zero, give equations in the coordinates alone (solved in closed for
 About an equilibrium q_e the reaction-free equations M(q) q̈ = f(q, q̇) linearise to
 M δq̈ + C δq̇ + K δq = 0 with M = M(q_e), C = −∂f/∂q̇, K = −∂f/∂q at (q_e, 0).  One degree of
 freedom: ω_n = sqrt(K/M), ζ = C/(2 sqrt(K M)).  Several: det(K − ω² M) = 0 (exact when small).
-Stability is decided from the eigenvalues of the first-order system with the parameters' values.
+Stability is decided from the eigenvalues of the first-order system with the parameters' values; where
+the linearisation holds a parameter without a value it is stated as a condition (one degree of freedom,
+undamped: stable while K/M > 0) or left undecided, never decided with a stand-in number.
 """
 
 from __future__ import annotations
@@ -91,7 +93,7 @@ def equilibria(solution, limit: int = 8) -> list[Equilibrium]:
         raise RigidkinError("sympy finds no closed-form equilibrium configuration.",
                             hint="Search numerically with simulate(), or give the configuration to linearise().")
     back = {v: k for k, v in plain.items()}
-    values = numeric_values(solution)
+    values = known_values(solution)       # a parameter without a value: real for the values that make it so
     out = []
     for sol in sols[:limit]:
         conf = {back[k]: algebra.readable(v) for k, v in sol.items()}
@@ -168,11 +170,12 @@ def linearise(solution, at: dict) -> Equilibrium:
     configuration = {q: v for q, v in point.items() if not isinstance(q, sp.Derivative)
                      and (q in at or q in lin.dependent or q not in lin.ignorable)}
     values = numeric_values(solution)
+    unset = _unset(solution, (Mmat, Cmat, Kmat))
     # natural frequencies (undamped) where exact
-    freqs, zetas, notes = [], [], []
+    freqs, zetas, notes, roots = [], [], [], None
     if n == 1:
         k, m, c = Kmat[0, 0], Mmat[0, 0], Cmat[0, 0]
-        if _num(k / m, values) > 0:
+        if _positive(k / m, values, unset):
             wn = algebra.readable(sp.sqrt(k / m))
             freqs.append(wn)
             if c != 0:
@@ -186,8 +189,12 @@ def linearise(solution, at: dict) -> Equilibrium:
             roots = []
             notes.append("no closed-form natural frequencies in time: see the eigenvalues (numeric)")
         for r in roots:
-            if _num(r, values) > 0:
+            if _positive(r, values, unset):
                 freqs.append(algebra.readable(sp.sqrt(r)))
+    if unset:
+        stab, eig = _conditional_stability(Mmat, Cmat, Kmat, unset, roots), ()
+        return _finish(solution, regime, point, configuration, (Mmat, Cmat, Kmat), eom, freqs, zetas, eig, stab,
+                       list(lin.notes) + notes)
     # stability from the first-order system with numbers
     Mn = np.array([[_num(Mmat[i, j], values) for j in range(n)] for i in range(n)])
     Kn = np.array([[_num(Kmat[i, j], values) for j in range(n)] for i in range(n)])
@@ -210,11 +217,65 @@ def linearise(solution, at: dict) -> Equilibrium:
             stab = "marginal (linearisation inconclusive)"
     notes.append("stability decided with the parameters' values: "
                  + ", ".join(f"{k} = {v:g}" for k, v in values.items()))
+    return _finish(solution, regime, point, configuration, (Mmat, Cmat, Kmat), eom, freqs, zetas, eig, stab,
+                   list(lin.notes) + notes)
+
+
+def known_values(solution) -> dict:
+    """The parameters that have a value, with it (no stand-in for those without)."""
+    return {p.symbol: p.value for p in solution.system.parameter_info.values() if p.value is not None}
+
+
+def _unset(solution, matrices) -> list:
+    """The parameters without a value that the linearisation holds, by name."""
+    missing = {p.symbol for p in solution.system.parameter_info.values() if p.value is None}
+    found = set().union(*(sp.Matrix(x).free_symbols for x in matrices))
+    return sorted(found & missing, key=lambda s: s.name)
+
+
+def _positive(expr, values, unset) -> bool:
+    """``expr`` > 0 with the parameters' values; with a parameter left without a value, unless its sign is known
+    to be negative or zero (then the frequency is kept, real where the condition holds)."""
+    if not unset or not (sp.sympify(expr).free_symbols & set(unset)):
+        return _num(expr, values) > 0
+    known = {k: v for k, v in values.items() if k not in unset}
+    e = sp.sympify(expr).xreplace({k: sp.Float(v) for k, v in known.items()})
+    return e.is_nonpositive is not True
+
+
+def _conditional_stability(Mmat, Cmat, Kmat, unset, roots=None) -> str:
+    """Stability where a parameter has no value: decided from the signs of ω² that the parameters' signs fix
+    (undamped), a condition for one undamped degree of freedom, else undecided."""
+    names = ", ".join(text(s) for s in unset)
+    verb = "has" if len(unset) == 1 else "have"
+    undamped = all(c == 0 for c in Cmat)
+    if undamped and Mmat.shape == (1, 1):
+        roots = [algebra.readable(Kmat[0, 0] / Mmat[0, 0])]
+    if undamped and roots is not None and len(roots) == Mmat.shape[0]:
+        signs = [sp.sympify(r) for r in roots]
+        if any(r.is_negative for r in signs):
+            return "unstable"
+        if all(r.is_nonnegative for r in signs):
+            neutral = sum(1 for r in signs if r.is_zero)
+            if neutral == len(signs):
+                return "marginal (linearisation inconclusive)"
+            return "stable (undamped oscillation about it)" + (
+                f", with {neutral} neutral mode(s) (free rigid-body motion)" if neutral else "")
+        if len(signs) == 1:
+            r = signs[0]
+            return (f"stable (undamped oscillation about it) while {text(r)} > 0, unstable while {text(r)} < 0 "
+                    f"({names} {verb} no value)")
+    return f"stability undecided: it depends on {names}, which {verb} no value (give {names} a value)"
+
+
+def _finish(solution, regime, point, configuration, mats, eom, freqs, zetas, eig, stab, notes) -> Equilibrium:
+    """The equilibrium with the notes every one carries (contact conditions, a relative equilibrium)."""
+    values = numeric_values(solution)
+    Mmat, Cmat, Kmat = mats
     for cond in regime.validity:
         v = _num(cond.expr.xreplace(point), values)
         if not cond.holds(v, 1e-9):
             notes.append(f"but {cond.label} fails there ({text(cond.expr)} = {v:.4g})")
-    notes = list(lin.notes) + notes
     if any(c.kind in ("drive", "prescribed coordinate") for c in solution.system.constraints.values()):
         notes.insert(0, _RELATIVE)     # a driven body turns: at rest relative to it, not to the ground
     return Equilibrium(configuration, Mmat, Cmat, Kmat, tuple(eom), tuple(freqs), tuple(zetas),

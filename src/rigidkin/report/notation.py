@@ -449,11 +449,19 @@ def latex_text(s: str) -> str:
     """Plain text (a title, a reason) for a TeX document: TeX's specials escaped, Unicode made TeX (ASCII out)."""
     s = _latex_text(s)
     repl = {"≥": r"$\geq$", "≤": r"$\leq$", "×": r"$\times$", "·": r"$\cdot$", "−": "-", "→": r"$\to$",
-            "⊗": r"$\otimes$", "²": r"$^2$", "³": r"$^3$", "°": r"$^\circ$", "≈": r"$\approx$",
+            "⊗": r"$\otimes$", "°": r"$^\circ$", "≈": r"$\approx$",
             "\u0307": "", "\u0308": "", "\u0302": "", "–": "--", "—": "---", "…": r"\ldots{}"}
     for k, v in repl.items():
         s = s.replace(k, v)
+    # a run of superscripts (Ω⁴, s⁻¹) or subscripts (y₁₂) as one TeX script: NFKD would print Ω⁴ as Ω4
+    s = _SUPERSCRIPTS.sub(lambda mt: "$^{" + mt.group(0).translate(_SCRIPT_DIGITS) + "}$", s)
+    s = _SUBSCRIPTS.sub(lambda mt: "$_{" + mt.group(0).translate(_SCRIPT_DIGITS) + "}$", s)
     return _ascii(s)
+
+
+_SUPERSCRIPTS = re.compile("[⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻]+")
+_SUBSCRIPTS = re.compile("[₀₁₂₃₄₅₆₇₈₉₊₋]+")
+_SCRIPT_DIGITS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻₀₁₂₃₄₅₆₇₈₉₊₋", "0123456789+-0123456789+-")
 
 
 def _ascii(s: str) -> str:
