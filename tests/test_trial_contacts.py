@@ -10,6 +10,7 @@
 
 import math
 
+import numpy as np
 import pytest
 import sympy as sp
 from scipy.integrate import quad
@@ -36,20 +37,24 @@ def test_a_held_contact_is_told_sticking_not_slipping():
     assert describe_mode(s, {"A": "stick", "B": "slip"}, held=("B",)) == "A sticking, B sticking (friction shared)"
 
 
-@pytest.mark.slow
-def test_half_disk_rolls_off_its_arc_and_comes_to_rest_on_both_edges():
-    from rigidkin.numeric.simulate import simulate
-    m, r, mu, w0 = 1.0, 0.1, 0.4, 13.0
+def _half_disk(theta0, w0=0.0, y0=0.1, m=1.0, r=0.1, mu=0.4):
     s = rk.System("half disk")
     m_, r_, g_ = s.parameter("m", "kg", value=m), s.parameter("r", "m", value=r), s.parameter("g", "m/s^2", value=G)
-    theta = s.coordinate("theta", "tilt, counter-clockwise", initial=0, rate=w0)
+    theta = s.coordinate("theta", "tilt, counter-clockwise", initial=theta0, rate=w0)
     x = s.coordinate("x", "flat-face centre along Ex", kind="length", rate=-r * w0)
-    y = s.coordinate("y", "flat-face centre above the floor", kind="length", initial=r)
+    y = s.coordinate("y", "flat-face centre above the floor", kind="length", initial=y0)
     O1 = s.point("O1", s.origin, x * s.inertial.Ex + y * s.inertial.Ey)
     half = s.body("half", rk.shapes.SemicircularDisk(m_, r_), frame=s.frame("B", angle=theta), at=O1)
     s.contact("P", half, s.line(s.origin, s.inertial.Ey), centre=O1, radius=r_, friction=mu)
     s.gravity(g_)
-    res = simulate(s, 0.7)
+    return s
+
+
+@pytest.mark.slow
+def test_half_disk_rolls_off_its_arc_and_comes_to_rest_on_both_edges():
+    from rigidkin.numeric.simulate import simulate
+    m, r, mu, w0 = 1.0, 0.1, 0.4, 13.0
+    res = simulate(_half_disk(0.0, w0), 0.7)
     rho = 4 * r / (3 * math.pi)
     IC = lambda q: m * (1.5 * r**2 - 2 * r * rho * math.cos(q))                          # noqa: E731
     E = 0.5 * IC(0) * w0**2 + m * G * (r - rho)
@@ -77,6 +82,47 @@ def test_half_disk_rolls_off_its_arc_and_comes_to_rest_on_both_edges():
     last = res.segments[-1]
     words = getattr(last, "description", None) or str(last)
     assert "slipping" not in words and "P_edge2 sticking (friction shared)" in words
+
+
+@pytest.mark.slow
+def test_half_disk_rocks_on_its_arc_with_the_period_of_its_energy_integral():
+    """Rolling from rest at θ0 = 0.1: period 4 ∫ dθ/θ̇ with θ̇² = 2 m g ρ (cos θ − cos θ0)/I_C(θ), 0.78755 s
+    (the linear 2π √(I_C(0)/(m g ρ)) = 0.78578 s); the restoring moment is m g ρ sin θ, not m g (r − ρ) sin θ."""
+    from rigidkin.numeric.simulate import simulate
+    r, th0 = 0.1, 0.1
+    rho = 4 * r / (3 * math.pi)
+    IC = lambda q: 1.5 * r**2 - 2 * r * rho * math.cos(q)                                 # noqa: E731
+    period = 4 * quad(lambda u: th0 * math.cos(u) / math.sqrt(
+        2 * G * rho * (math.cos(th0 * math.sin(u)) - math.cos(th0)) / IC(th0 * math.sin(u))), 0, math.pi / 2)[0]
+    assert 2 * math.pi * math.sqrt(IC(0) / (G * rho)) == pytest.approx(0.78578, abs=1e-5)
+    res = simulate(_half_disk(th0), 1.7, n_points=3401)
+    assert res.events == [] and res.reached_end
+    t, th = np.asarray(res.t), np.asarray(res["theta"])
+    i = np.nonzero((th[:-1] > 0) & (th[1:] <= 0))[0]
+    downs = [res.t[k] + (res.t[k + 1] - res.t[k]) * th[k] / (th[k] - th[k + 1]) for k in i]
+    assert len(downs) == 2 and downs[1] - downs[0] == pytest.approx(period, rel=1e-6)
+    assert max(abs(np.asarray(res["F_P"]) / np.asarray(res["N_P"]))) < 0.4         # it rolls all along (µ = 0.4)
+    assert len(t) == 3401
+
+
+@pytest.mark.slow
+def test_half_disk_released_on_its_edge_rocks_back_or_falls_flat():
+    """On its edge from rest (y = r sin θ0): pivoting on the edge, ½ (3 m r²/2) θ̇² = m g (h0 − h), h the mass
+    centre's height above the edge, r sin θ − ρ cos θ; beyond θ = π − atan(r/ρ) it falls, short of it it rocks back."""
+    from rigidkin.numeric.simulate import simulate
+    r, m = 0.1, 1.0
+    rho, IE = 4 * r / (3 * math.pi), 1.5 * m * r**2
+    assert math.pi - math.atan(r / rho) == pytest.approx(math.radians(112.9965), abs=1e-5)
+    th0 = 1.8
+    res = simulate(_half_disk(th0, y0=r * math.sin(th0)), 0.25)
+    back = res.events[0]
+    assert back.kind == "arc-back" and back.state["theta"] == pytest.approx(math.pi / 2, abs=1e-9)
+    h = lambda q: r * math.sin(q) - rho * math.cos(q)                                    # noqa: E731
+    assert back.state["dot(theta)"] == pytest.approx(-math.sqrt(2 * m * G * (h(th0) - r) / IE), rel=1e-9)
+    th0 = 2.2
+    res = simulate(_half_disk(th0, y0=r * math.sin(th0)), 0.3)
+    assert res.segments[0].description.startswith("P open, P_edge2 sticking")
+    assert res.final_state["theta"] == pytest.approx(math.pi, abs=1e-9)
 
 
 def test_swinging_yoyo_taut_from_rest_by_hand():
