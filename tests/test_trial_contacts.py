@@ -136,6 +136,7 @@ def test_swinging_yoyo_taut_from_rest_by_hand():
     yoyo = s.body("yoyo", rk.shapes.Disk(m, R), frame=s.frame("B", angle=phi), at=C)
     s.rope("string", [s.origin, Wrap(yoyo, r, "ccw")], tensions=("T",))    # down the drum's left side
     s.gravity(g)
+    assert describe_mode(s, {}) == "string taut" and describe_mode(s, {"string": "open"}) == "string slack"
     sol = s.solve()
     t = rk.t
     at = {sp.Derivative(y, t): 0, sp.Derivative(x, t): 0}

@@ -31,7 +31,8 @@ def describe_mode(system, mode: dict, held=()) -> str:
     supports; a rolling contact is named ``slip`` only so) does not slip: it is told as sticking (rolling)
     with its friction shared."""
     words = []
-    for name, st in sorted(mode.items()):
+    ropes = {n: STICK for n, c in system.constraints.items() if getattr(c, "kind", "") in ("rope", "cable")}
+    for name, st in sorted({**ropes, **mode}.items()):      # a rope is in a mode only while slack: else taut
         c = system.constraints.get(name)
         if c is None or (st == OPEN and getattr(c, "edge_of", None)):
             continue            # an edge at the end of an arc (model.arc_edges) is told only while it touches
