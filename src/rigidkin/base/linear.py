@@ -66,8 +66,6 @@ class _Probe:
         syms = sorted(plain.free_symbols - {t}, key=str)
         coords = sorted((s for s, f in back.items() if not isinstance(f, sp.Derivative)), key=str)
         rng = random.Random(seed)
-        base = {s: float(v) for s, v in algebra.random_point(syms, rng).items()}
-        points = [base] + [{**base, **st} for st in special_states(coords, rng)]
         fn = sp.lambdify([t] + syms, plain, "numpy")
         def at(p):
             try:
@@ -76,6 +74,11 @@ class _Probe:
                 return np.full(plain.shape, np.nan, dtype=complex)
 
         with np.errstate(all="ignore"):
+            for _ in range(8):     # a point where every entry is defined (a rope's √(d² − r²) needs d > r)
+                base = {s: float(v) for s, v in algebra.random_point(syms, rng).items()}
+                if np.all(np.isfinite(at(base))):
+                    break
+            points = [base] + [{**base, **st} for st in special_states(coords, rng)]
             self.mats = np.array([at(p) for p in points])
         self.scale = max(1.0, float(np.nanmax(np.abs(self.mats[0])))) if self.mats[0].size else 1.0
 

@@ -85,7 +85,7 @@ class ModeModel:
 
     @property
     def description(self) -> str:
-        words = describe_mode(self.system, self.mode)
+        words = describe_mode(self.system, self.mode, getattr(self.solution.setup, "held", ()))
         conds = [f"{self.watches[wi].quantity} {rel} 0" for wi, rel in self.conditions]
         return words + (f" ({', '.join(conds)})" if conds else "")
 

@@ -11,7 +11,7 @@ derivation (:mod:`.modes`), the choice of a consistent mode (:mod:`.settle`, :mo
 from __future__ import annotations
 
 from ...base.errors import RigidkinError
-from ...model.constraints import SMOOTH
+from ...model.constraints import ROLLING, SMOOTH
 
 OPEN, SLIP, STICK = "open", "slip", "stick"
 
@@ -24,10 +24,15 @@ def mode_key(mode: dict) -> tuple:
     return tuple(sorted(mode.items()))
 
 
-def describe_mode(system, mode: dict) -> str:
-    """``A open, B closed (smooth)``: the contacts' states in words."""
+def describe_mode(system, mode: dict, held=()) -> str:
+    """``A open, B closed (smooth)``: the contacts' states in words.
+
+    A contact named ``slip`` whose friction the sticking ones carry (``held``: a rod at rest on two rough
+    supports; a rolling contact is named ``slip`` only so) does not slip: it is told as sticking (rolling)
+    with its friction shared."""
     words = []
-    for name, st in sorted(mode.items()):
+    ropes = {n: STICK for n, c in system.constraints.items() if getattr(c, "kind", "") in ("rope", "cable")}
+    for name, st in sorted({**ropes, **mode}.items()):      # a rope is in a mode only while slack: else taut
         c = system.constraints.get(name)
         if c is None or (st == OPEN and getattr(c, "edge_of", None)):
             continue            # an edge at the end of an arc (model.arc_edges) is told only while it touches
@@ -39,6 +44,8 @@ def describe_mode(system, mode: dict) -> str:
             words.append(f"{name} rolling" if c.radius != 0 else f"{name} sticking")
         elif c.friction == SMOOTH:
             words.append(f"{name} closed")
+        elif name in held or c.friction == ROLLING:
+            words.append(f"{name} {'rolling' if c.radius != 0 else 'sticking'} (friction shared)")
         else:
             words.append(f"{name} slipping")
     return ", ".join(words) or "no contacts"
