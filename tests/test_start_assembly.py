@@ -154,3 +154,17 @@ def test_a_sweeps_record_answers_only_starts_on_the_constraints():
     _, _, Y = sweep_record.plan(rec, {"theta": [0.3, 0.4]}, {}, {})
     assert np.allclose(Y[:, 1], 2 * np.sin([0.3, 0.4]))      # x = l sin θ: on the wall
     assert sweep_record.plan(rec, {"theta": [0.3, 0.4]}, {}, {"x": "0.1"}) is None    # the full route refuses
+
+
+def test_a_declared_rate_the_rolling_constraint_overrules_is_said():
+    """A disk rolling on an incline: ẋ = r θ̇ (r = 0.2 m).  Declared θ̇ = 5 and ẋ = 0: the start takes ẋ = 1 from
+    the rolling constraint, and the result (and the command line) says which declared rate yielded."""
+    from rigidkin.examples import HERE
+
+    text = (HERE / "disk-spring-incline.toml").read_text(encoding="utf-8").replace(
+        'kind = "length" }', 'kind = "length", initial = 0, rate = 0 }').replace("initial = 0, rate = 0 }\nx",
+                                                                                 "initial = 0, rate = 5 }\nx")
+    s = parse_problem(text)[0]
+    r = simulate(s, 0.01)
+    assert r.at(0.0)["dot(x)"] == pytest.approx(1.0, abs=1e-12)
+    assert r.assembled == {"dot(x)": (0.0, pytest.approx(1.0, abs=1e-12))}

@@ -292,6 +292,9 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
                         "assembled there (Newton's method from the value given)" for nm, (a, b) in assembled.items()
                         if lay.names.index(nm) in explicit]
     assembled = {nm: v for nm, v in assembled.items() if lay.names.index(nm) not in explicit}   # declared ones
+    assembled.update({lay.labels[i]: (v, float(y_q[i])) for i, v in declared.items()     # declared rates the
+                      if i >= n and i not in explicit                                     # constraints overrule
+                      and abs(float(y_q[i]) - v) > 1e-9 * max(1.0, abs(v))})
     status, message, stop = "completed", f"reached t = {t1:g}", "completed"
     ph, ph_start = 0, t0
     t_now = t0
@@ -411,7 +414,7 @@ def simulate_motion(system, t_span, initial_state: Mapping | None = None, params
                           energy_tol=energy_tol, residual_tol=residual_tol, notes=notes)
     if result.stop_reason == "completed":      # else the monitors stopped it (constraint or energy drift)
         result.stop_reason = stop
-    result.assembled = assembled          # declared coordinates moved onto the constraints: (declared, assembled)
+    result.assembled = assembled          # declared coordinates (and rates) the constraints moved: (declared, now)
     if raise_on_stop and result.stop_reason != "completed":
         exc = SimulationError(result.message, where=system.name)
         exc.stop_reason, exc.result = result.stop_reason, result
