@@ -3,9 +3,9 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import Field
+from pydantic import Field, WrapValidator, field_validator
 
 from .schema_base import Expr, Name, Strict
 
@@ -128,12 +128,35 @@ class WrapSpec(Strict):
     centre: Name | None = None
     mu: Expr | None = None              # belt friction: the rope grips while T_tight ≤ T_slack e^(µφ)
 
+    @field_validator("sense", mode="before")
+    @classmethod
+    def _sense(cls, value: Any) -> Any:
+        if value not in ("cw", "ccw"):
+            raise ValueError("sense must be \"cw\" (the pulley on the rope's right as it runs from the first end "
+                             "to the last) or \"ccw\" (on its left)")
+        return value
+
+
+def _point_or_pulley(value: Any, handler: Any) -> Any:
+    """A rope path entry: a point name as it is, or a table checked as a WrapSpec (its own errors, its own fields)."""
+    if isinstance(value, str):
+        return value
+    if not isinstance(value, dict | WrapSpec):
+        raise ValueError("expected a point name (a string) or a pulley table "
+                         "{ pulley = BODY, radius = ..., sense = \"cw\" | \"ccw\" }")
+    return handler(value)
+
+
+#: One entry of a rope's path: a point name (str, passed as it is) or a pulley (WrapSpec). Not a union, so a
+#: wrong pulley table is reported at its own field (path[1].sense), not as "not a string".
+PathEntry = Annotated[WrapSpec, WrapValidator(_point_or_pulley)]
+
 
 class RopeSpec(Strict):
     """A rope from a point over pulleys with inertia to a point (or a drum), one tension per segment."""
 
     type: Literal["rope"]
-    path: list[Name | WrapSpec] = Field(min_length=2)
+    path: list[PathEntry] = Field(min_length=2)
     tensions: list[Name] | None = None
     restitution: Expr | None = None       # e of its jerk as it re-tightens after going slack (0 ≤ e ≤ 1; default 0)
     description: str = ""
