@@ -31,7 +31,7 @@ from .contacts.contact_modes import confirm, decide
 from .contacts.modes import Hybrid
 from .contacts.slack_start import start_modes, start_slack
 from .contacts.transition import transition as _transition
-from .contacts.vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode
+from .contacts.vocabulary import OPEN, ModeUnavailable, describe_mode
 from .inputs import ACTIVE, binding, placeholders
 from .large.route import numeric_route, simulate_tree
 from .large.tree import NotATree
