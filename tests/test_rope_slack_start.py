@@ -154,3 +154,17 @@ def test_the_command_line_starts_a_cable_slack(tmp_path, capsys):
     assert ev["impact"]["impulse"] == pytest.approx(0.5 * G * ts, rel=1e-7)
     assert main(["simulate", str(path), "--t-end", "0.1", "--set", "L=0.5", "--mode", "string=open"]) != 0
     assert "cable string cannot start slack" in capsys.readouterr().err
+
+
+def test_a_cable_the_coordinates_keep_at_its_length_cannot_start_slack():
+    """The bob at ρ = L fixed by the coordinates (φ alone): nothing lets the cable be slack, so a slack start is
+    refused in one paragraph instead of a pendulum whose cable could push."""
+    s = rk.System("bob on a rigid string")
+    m, L, g = s.parameter("m", "kg", value=0.5), s.parameter("L", "m", value=1.0), s.parameter("g", "m/s^2", value=G)
+    phi = s.coordinate("phi", "angle of the string from the downward vertical", initial=0.3)
+    B = s.point("B", offset=L * (sp.sin(phi) * s.inertial.x - sp.cos(phi) * s.inertial.y))
+    s.body("bob", rk.shapes.PointMass(m), frame=s.inertial, at=B)
+    s.cable("string", [s.origin, B], L, tension_name="T")
+    s.gravity(g)
+    with pytest.raises(InputError, match="cable string cannot start slack: the coordinates keep cable string at its"):
+        simulate(s, 0.1, mode={"string": "open"})
