@@ -2,7 +2,7 @@
 
 ``--set NAME=VALUE`` gives parameter values (``--set "beta=30 deg"``; a bare number is SI),
 ``--initial NAME=VALUE`` initial coordinates and rates (``--initial theta=1e-6 "dot(theta)=0"``),
-``--mode CONTACT=open|slip|stick`` the starting state of a contact, ``--restitution E`` (or
+``--mode CONTACT=open|slip|stick`` the starting state of a contact (a rope or cable: open|taut), ``--restitution E`` (or
 ``CONTACT=E``) the coefficient of restitution of impacts, ``--input NAME=EXPR`` an input u(t) as an
 expression of t and the parameters (read by the restricted expression parser).  ``--plot``, ``--csv`` write the figure
 and the histories; ``--json`` prints the events, the final state and the energy drift.
@@ -40,7 +40,7 @@ def register(sub) -> None:
     p.add_argument("--initial", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="initial coordinates and rates: --initial theta=1e-6 \"dot(theta)=0\"")
     p.add_argument("--mode", nargs="+", action="extend", default=[], metavar="CONTACT=STATE",
-                   help="starting state of a contact: open, slip or stick")
+                   help="starting state of a contact: open, slip or stick; of a rope or cable: open (slack) or taut")
     p.add_argument("--restitution", nargs="+", action="extend", default=[], metavar="E|CONTACT=E",
                    help="coefficient of restitution of impacts, for all contacts or per contact (or per rope or "
                         "cable: its jerk; default: the restitution in the problem file, else 0)")

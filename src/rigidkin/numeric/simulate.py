@@ -29,8 +29,9 @@ from ..model.constraints import Coulomb
 from ..model.inputs import inputs_of
 from .contacts.contact_modes import confirm, decide
 from .contacts.modes import Hybrid
+from .contacts.slack_start import start_modes, start_slack
 from .contacts.transition import transition as _transition
-from .contacts.vocabulary import OPEN, SLIP, STICK, ModeUnavailable, describe_mode
+from .contacts.vocabulary import OPEN, ModeUnavailable, describe_mode
 from .inputs import ACTIVE, binding, placeholders
 from .large.route import numeric_route, simulate_tree
 from .large.tree import NotATree
@@ -96,14 +97,7 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
     p = parameter_vector(system, lay, params)
     explicit, declared = initial_values(system, lay, initial)
     given = {**declared, **explicit}
-    cand = hyb.default_mode()
-    for name, st in (mode or {}).items():
-        if name not in hyb.contacts:
-            raise InputError(f"'{name}' is not a contact of {system.name}.", where="mode",
-                             hint=f"Contacts: {', '.join(hyb.contacts) or 'none'}.")
-        if st not in (OPEN, SLIP, STICK):
-            raise InputError(f"contact state '{st}' is not open, slip or stick.", where=f"mode of {name}")
-        cand[name] = st
+    cand, slack = start_modes(hyb, mode)       # ropes and cables started slack: .contacts.slack_start
     n = lay.n
     where = f"initial state of {system.name}"
     for _ in range(len(hyb.contacts) + 1):
@@ -173,13 +167,15 @@ def initial_conditions(system, initial: Mapping | None = None, params=None, mode
                                   "closed).")
         # the contact problem over every touching contact: settle's repair of the candidate is tried
         # first, then every combination in a fixed order; all of them where a contact slides (Painlevé)
+        keep = start_slack(hyb, slack, t0, y, p, where)
         try:
             proposal, _, _ = hyb.settle(cand, t0, y, p)
         except SimulationError:
             proposal = None
-        dec = decide(hyb, t0, y, p, proposal, every=_sliding(hyb, cand, t0, y, p))
+        dec = decide(hyb, t0, y, p, proposal, every=_sliding(hyb, cand, t0, y, p), keep=keep)
         mode_, k = dec.mode, dec.regime
         y = hyb.project_rates(mode_, t0, hyb.assemble(mode_, t0, y, p, where), p)
+        start_slack(hyb, slack, t0, y, p, where)        # the free lengths at the assembled start
         _check_domain(hyb.model(mode_, k), t0, y, p, where)
         return y, mode_, k
     raise InputError("no set of open and closed contacts fits the initial state.", where=system.name)
