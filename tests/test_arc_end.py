@@ -156,6 +156,7 @@ def test_a_no_slip_edge_cannot_let_it_fall_flat(rolling):
     assert abs(G - G * u**2 / (1.5 * R**2) - w2 * v) < 1e-6 * G          # N = 0 by hand where it stops
 
 
+@pytest.mark.slow
 def test_frictionless_edge_slides_back_onto_the_arc():
     """Smooth: at rest on E2 at θ0 = 1.9, G falls straight down (x_G fixed) while E2 slides; y_G = v(θ), ẏ_G = u θ̇,
     so ½ (I_G + m u²) θ̇² + m g v(θ) = m g v(θ0).  At θ = π/2 (u = b) the arc takes the contact back, sliding, with

@@ -41,7 +41,7 @@ def _equal_at(a, b, values) -> bool:
     return abs(sp.N(va - vb, 60)) <= sp.Float(10) ** -50 * max(1, abs(sp.N(vb, 60)))
 
 
-@pytest.fixture(scope="module", params=["four_bar", "cart_pendulum"])
+@pytest.fixture(scope="module", params=[pytest.param("four_bar", marks=pytest.mark.slow), "cart_pendulum"])
 def structured_regime(request):
     system = getattr(models, request.param)()
     sol = system.solve()

@@ -77,7 +77,7 @@ def test_rolling_block_on_two_corners_is_statics_with_the_friction_split_named(l
     assert any("rolling" in line for line in r.indeterminate.friction)
 
 
-@pytest.mark.parametrize("la, lb", [(0.2, 0.2), (0.15, 0.35)])
+@pytest.mark.parametrize("la, lb", [(0.2, 0.2), pytest.param(0.15, 0.35, marks=pytest.mark.slow)])
 def test_rolling_block_reactions_match_the_simulation_at_rest(la, lb):
     s = block(la, lb)
     r = s.solve().regimes[0]

@@ -296,6 +296,7 @@ def test_a_rope_over_pulleys_still_stops_where_it_goes_slack():
     assert res.stop_reason == "slack" and "runs over pulleys" in res.message
 
 
+@pytest.mark.slow
 def test_a_string_that_would_push_at_the_start_starts_slack():
     """Hand y_H = A cos Ωt from rest: taut, T = k (g − A Ω²) < 0 at t = 0, so the string starts slack; the yo-yo
     falls from rest, y = y0 − g t²/2 (no spin), until A cos Ωt − y = ℓ0 = A − y0; then the jerk."""

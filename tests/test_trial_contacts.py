@@ -125,6 +125,7 @@ def test_half_disk_released_on_its_edge_rocks_back_or_falls_flat():
     assert res.final_state["theta"] == pytest.approx(math.pi, abs=1e-9)
 
 
+@pytest.mark.slow
 def test_swinging_yoyo_taut_from_rest_by_hand():
     s = rk.System("yo-yo")
     m, R, r = s.parameter("m", "kg", value=0.1), s.parameter("R", "m", value=0.03), s.parameter("r", "m", value=0.005)
