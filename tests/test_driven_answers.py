@@ -45,6 +45,7 @@ def test_rod_on_a_spinning_shaft_has_the_jacobi_integral_by_hand():
     assert "only for the given driving law" in h.why
 
 
+@pytest.mark.slow
 def test_event_of_a_driven_system_names_its_driving_law():
     s, m, l, g, W, th = shaft()
     sol = s.solve()

@@ -180,6 +180,7 @@ def test_gpu_sweep_launches_the_cuda_branch_and_equals_the_c_backend(ladder, cup
     np.testing.assert_allclose(gr.event_y[reached, 1, 0], 0.6, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_gpu_sweep_without_events_runs_to_the_end_time(cupy_on_host):
     """No event (a pendulum chain to t = 0.5 s): the kernel's one-column placeholder buffers, status 0, and the
     final states of the C backend."""

@@ -196,6 +196,7 @@ def test_rolling_disk_eigenvalues_against_sympy_and_the_critical_spin():
         steady.linearise(sol, {theta: sp.Rational(1, 3), theta.diff(t): 0, psi.diff(t): 0, phi.diff(t): Om})
 
 
+@pytest.mark.slow
 def test_four_bar_check_compares_on_the_constraint_manifold():
     """check on a four-bar: every law agrees (work–energy included) at admissible states; off the
     manifold the power balance would not vanish, and on it a wrong residual is still caught."""

@@ -211,6 +211,7 @@ def test_every_law_at_rest_gives_the_same_statics(method):
     assert r.indeterminate.reactions == ("F_A", "F_C")
 
 
+@pytest.mark.slow
 def test_a_question_for_an_indeterminate_reaction_says_so(tmp_path, capsys):
     f = tmp_path / "block.toml"
     f.write_text(BLOCK_TOML + '\n[[ask.question]]\nkind = "reaction"\nname = "front"\nreaction = "N_C"\n'
